@@ -1,0 +1,20 @@
+# Compiler warnings and sanitizers as INTERFACE targets (never global flags).
+add_library(occlude_warnings INTERFACE)
+add_library(occlude::warnings ALIAS occlude_warnings)
+target_compile_options(occlude_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
+  -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
+  $<$<BOOL:${OCCLUDE_WERROR}>:-Werror>)
+
+add_library(occlude_sanitize INTERFACE)
+add_library(occlude::sanitize ALIAS occlude_sanitize)
+if(OCCLUDE_SANITIZE)
+  target_compile_options(occlude_sanitize INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(occlude_sanitize INTERFACE -fsanitize=address,undefined)
+endif()
+
+# Every project target links this: warnings + sanitizers + internal asserts.
+add_library(occlude_defaults INTERFACE)
+add_library(occlude::defaults ALIAS occlude_defaults)
+target_link_libraries(occlude_defaults INTERFACE occlude_warnings occlude_sanitize)
