@@ -3,7 +3,7 @@ add_library(occlude_warnings INTERFACE)
 add_library(occlude::warnings ALIAS occlude_warnings)
 target_compile_options(occlude_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
-  -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
+  -Woverloaded-virtual -Wdouble-promotion -Wformat=2
   $<$<BOOL:${OCCLUDE_WERROR}>:-Werror>)
 
 add_library(occlude_sanitize INTERFACE)

@@ -1,0 +1,97 @@
+// The Implicit Sphere Tree of one mesh: its sparse voxel grid, the octree over
+// the surface voxels, and (optionally) the explicit "saved IST" the paper
+// proposes: every node's sphere precomputed into flat structure-of-arrays
+// storage, so queries only traverse.
+//
+// Frame: everything is in the mesh's own frame F, mm. Build once per mesh and
+// voxel size; queries between two trees take the pose of one in the other.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "occlude/collision/octree.h"
+#include "occlude/collision/voxel_grid.h"
+#include "occlude/io/triangle_mesh.h"
+
+namespace occlude::collision {
+
+/// How a node's bounding sphere is obtained during a query.
+enum class SphereMode {
+  kSimple,     ///< implicit: encloses the node's cube (sqrt(3)/2 * edge), derived on the fly
+  kOptimized,  ///< implicit: smallest sphere of the occupied child cubes, from the lookup table
+  kExplicit,   ///< precomputed at build time (from `SphereTreeOptions::explicit_from`)
+};
+const char* ToString(SphereMode mode);
+
+struct SphereTreeOptions {
+  VoxelizeOptions voxelize;                        ///< voxel size and classification
+  bool build_explicit = true;                      ///< precompute the saved IST
+  SphereMode explicit_from = SphereMode::kOptimized;  ///< kSimple or kOptimized
+};
+
+/// Per-level figures of the paper (Figs. 7-9).
+struct LevelStats {
+  int level = 0;
+  std::size_t nodes = 0;
+  double simple_volume_mm3 = 0.0;     ///< total volume of the simple spheres
+  double optimized_volume_mm3 = 0.0;  ///< total volume of the optimized spheres
+};
+
+struct SphereTreeStats {
+  VoxelizeStats voxelize;
+  std::vector<LevelStats> levels;  ///< index = level (0 = leaves)
+  std::size_t nodes = 0;
+  std::size_t leaves = 0;
+  double seconds_voxelize = 0.0;
+  double seconds_octree = 0.0;
+  double seconds_explicit = 0.0;
+  std::size_t bytes_grid = 0;
+  std::size_t bytes_octree = 0;
+  std::size_t bytes_explicit = 0;
+  std::size_t bytes_mesh = 0;
+  std::size_t total_bytes() const { return bytes_grid + bytes_octree + bytes_explicit + bytes_mesh; }
+  double total_seconds() const { return seconds_voxelize + seconds_octree + seconds_explicit; }
+};
+
+/// Explicit spheres, structure of arrays indexed by octree node (frame F, mm).
+struct ExplicitSpheres {
+  SphereMode from = SphereMode::kOptimized;
+  std::vector<double> cx, cy, cz, radius;
+  bool empty() const { return radius.empty(); }
+  std::size_t MemoryBytes() const;
+};
+
+class SphereTree {
+ public:
+  /// Voxelizes `mesh_F` and builds the octree (and explicit spheres). Throws
+  /// VoxelizeError for unusable sizes or budgets. The mesh is kept (shared) for
+  /// the exact triangle-level refinement.
+  static SphereTree Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
+                          const SphereTreeOptions& options = {});
+
+  const io::TriangleMesh& mesh() const { return *mesh_; }
+  const VoxelGrid& grid() const { return grid_; }
+  const Octree& octree() const { return octree_; }
+  const ExplicitSpheres& explicit_spheres() const { return explicit_; }
+  const SphereTreeStats& stats() const { return stats_; }
+  double voxel_size_mm() const { return grid_.voxel_size_mm; }
+  bool empty() const { return octree_.empty(); }
+
+  /// Edge of a node at `level`, mm.
+  double edge(int level) const { return std::ldexp(grid_.voxel_size_mm, level); }
+  /// Centre of node n's cube in F, mm.
+  Eigen::Vector3d CubeCenter(std::size_t node, int level) const;
+  /// The sphere of node n for an implicit mode (kSimple or kOptimized), in F.
+  void ImplicitSphere(std::size_t node, int level, SphereMode mode, Eigen::Vector3d* center,
+                      double* radius) const;
+
+ private:
+  std::shared_ptr<const io::TriangleMesh> mesh_;
+  VoxelGrid grid_;
+  Octree octree_;
+  ExplicitSpheres explicit_;
+  SphereTreeStats stats_;
+};
+
+}  // namespace occlude::collision
