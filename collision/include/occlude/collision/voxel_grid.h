@@ -8,11 +8,16 @@
 //
 // Classes (after the paper, from McNeely et al.):
 //   Surface   - a triangle overlaps the voxel cube (exact separating-axis test,
-//               touching counts);
+//               touching counts; the cube is the one of VoxelCenter and
+//               SurfaceHalfSize, grown by kSurfaceSlack so that no triangle can
+//               slip through a floating-point seam between neighbouring cubes);
 //   Proximity - not Surface, and within about `proximity_layers` voxels of a
 //               surface voxel on the outward side of its triangles' normals;
 //   Interior  - not Surface, centre inside a closed (edge-manifold, watertight)
-//               connected component of the mesh; never set for open parts;
+//               connected component of the mesh; never set for open parts.
+//               Components are joined across edges, so closed shells that touch
+//               an open part (teeth on the gingiva) stay closed. Interior wins
+//               over Proximity: the classes are disjoint;
 //   Undefined - everything else (not stored).
 #pragma once
 
@@ -26,6 +31,12 @@
 #include "occlude/io/triangle_mesh.h"
 
 namespace occlude::collision {
+
+/// Relative growth of the voxel cube in the Surface test. Neighbouring cubes
+/// computed as centre +- s/2 in double can leave seams of a few ulps (a face
+/// lying exactly on a voxel boundary could touch neither); this closes them for
+/// coordinates up to about 10^6 voxel sizes from the frame's origin.
+inline constexpr double kSurfaceSlack = 1e-9;
 
 enum class VoxelClass : std::uint8_t { kUndefined = 0, kSurface = 1, kProximity = 2, kInterior = 3 };
 
@@ -53,6 +64,7 @@ struct VoxelizeStats {
   std::size_t triangle_voxel_tests = 0;  ///< exact triangle-cube tests performed
   std::size_t closed_components = 0;
   std::size_t open_components = 0;
+  std::size_t interior_odd_rows = 0;     ///< (row, component) pairs skipped: odd crossings
   double seconds_surface = 0.0;
   double seconds_proximity = 0.0;
   double seconds_interior = 0.0;
@@ -66,7 +78,7 @@ struct VoxelGrid {
   std::vector<std::uint64_t> surface_keys;      ///< Morton codes, strictly increasing
   std::vector<std::uint32_t> triangle_offsets;  ///< CSR: size surface_keys.size() + 1
   std::vector<std::uint32_t> triangle_indices;  ///< triangles touching each surface voxel
-  std::vector<std::uint64_t> proximity_keys;    ///< strictly increasing, disjoint from surface
+  std::vector<std::uint64_t> proximity_keys;    ///< strictly increasing, disjoint from the others
   std::vector<VoxelRun> interior_runs;          ///< sorted by (z, y, x_begin); disjoint from surface
 
   std::size_t num_surface() const { return surface_keys.size(); }
@@ -78,6 +90,8 @@ struct VoxelGrid {
   Eigen::Vector3d VoxelCenter(const Eigen::Vector3i& ijk) const {
     return origin_F + voxel_size_mm * (ijk.cast<double>() + Eigen::Vector3d::Constant(0.5));
   }
+  /// Half edge of the cube that the Surface test uses around VoxelCenter.
+  double SurfaceHalfSize() const { return 0.5 * voxel_size_mm * (1.0 + kSurfaceSlack); }
   /// Voxel containing point p_F (may be outside [0, dims)).
   Eigen::Vector3i VoxelOf(const Eigen::Vector3d& p_F) const;
   /// Class of a voxel (any coordinates; outside the grid is Undefined). O(log n).
