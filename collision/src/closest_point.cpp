@@ -3,6 +3,7 @@
 // it is exact up to rounding and needs no normalisation.
 #include "occlude/collision/closest_point.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 namespace occlude::collision {
@@ -17,12 +18,38 @@ TrianglePoint Make(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eig
   return r;
 }
 
+// Closest point over the three edges (for degenerate and sliver triangles).
+TrianglePoint ClosestOnEdges(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  double s = 0.0;
+  double t = 0.0;
+  TrianglePoint best = Make(p, a, b, c, 1, 0, 0);
+  const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+  for (int e = 0; e < 3; ++e) {
+    const int j = (e + 1) % 3;
+    ClosestPointsSegmentSegment(*corners[e], *corners[j], p, p, &s, &t);
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    w[e] = 1 - s;
+    w[j] = s;
+    const TrianglePoint cand = Make(p, a, b, c, w[0], w[1], w[2]);
+    if (cand.squared_distance < best.squared_distance) best = cand;
+  }
+  return best;
+}
+
 }  // namespace
 
 TrianglePoint ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                      const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a;
   const Eigen::Vector3d ac = c - a;
+  // Slivers (corner-angle sine below ~1e-6) make the Voronoi products below
+  // cancel catastrophically; their closest point is on an edge to within
+  // sine * edge length, so the exact edge search is used instead.
+  constexpr double kSliverSine2 = 1e-12;
+  if (ab.cross(ac).squaredNorm() <= kSliverSine2 * ab.squaredNorm() * ac.squaredNorm()) {
+    return ClosestOnEdges(p, a, b, c);
+  }
   const Eigen::Vector3d ap = p - a;
   const double d1 = ab.dot(ap);
   const double d2 = ac.dot(ap);
@@ -63,22 +90,7 @@ TrianglePoint ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vect
     return Make(p, a, b, c, 1 - v - w, v, w);
   }
 
-  // Degenerate triangle: the closest point lies on one of its edges.
-  double s = 0.0;
-  double t = 0.0;
-  TrianglePoint best = Make(p, a, b, c, 1, 0, 0);
-  const Eigen::Vector3d* corners[3] = {&a, &b, &c};
-  for (int e = 0; e < 3; ++e) {
-    const int i = e;
-    const int j = (e + 1) % 3;
-    ClosestPointsSegmentSegment(*corners[i], *corners[j], p, p, &s, &t);
-    Eigen::Vector3d w = Eigen::Vector3d::Zero();
-    w[i] = 1 - s;
-    w[j] = s;
-    const TrianglePoint cand = Make(p, a, b, c, w[0], w[1], w[2]);
-    if (cand.squared_distance < best.squared_distance) best = cand;
-  }
-  return best;
+  return ClosestOnEdges(p, a, b, c);  // degenerate: the closest point is on an edge
 }
 
 double ClosestPointsSegmentSegment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
