@@ -13,6 +13,7 @@
 // 1 + 7 * (top_a + top_b + 1) entries.
 #include "occlude/collision/collide.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -25,26 +26,84 @@ namespace {
 constexpr double kPruneSlackMm = 1e-9;  // keeps rounding from pruning a valid pair
 
 // One tree as seen from frame A during a query.
+constexpr int kMaxLevels = 24;  // Morton codes hold 21 bits per axis
+constexpr int kMaxCellLevel = 3;
+
 struct Side {
   const SphereTree* tree;
   const Octree* oct;
+  const UnitSphere* table;  // OptimizedSphereTable()
   Eigen::Matrix3d R;      // rotation of this tree's frame into A
   Eigen::Vector3d t;      // translation of this tree's frame into A
   Eigen::Vector3d slot_dir[8];  // R * ChildSlotSign(k)
   double s;               // voxel size
   bool rotated;
+  double edge[kMaxLevels];          // node edge per level
+  double simple_radius[kMaxLevels];  // sqrt(3)/2 * edge
+  double child_offset[kMaxLevels];   // ChildCenterOffset(s, level)
 
   Side(const SphereTree& tr, const Eigen::Isometry3d& X, bool is_rotated)
-      : tree(&tr), oct(&tr.octree()), R(X.linear()), t(X.translation()),
-        s(tr.voxel_size_mm()), rotated(is_rotated) {
+      : tree(&tr), oct(&tr.octree()), table(OptimizedSphereTable().data()), R(X.linear()),
+        t(X.translation()), s(tr.voxel_size_mm()), rotated(is_rotated) {
     for (int k = 0; k < 8; ++k) slot_dir[k] = R * ChildSlotSign(k);
+    for (int level = 0; level < kMaxLevels; ++level) {
+      edge[level] = tr.edge(level);
+      simple_radius[level] = SimpleRadius(edge[level]);
+      child_offset[level] = ChildCenterOffset(s, level);
+    }
   }
   Eigen::Vector3d ToA(const Eigen::Vector3d& p) const { return rotated ? Eigen::Vector3d(R * p + t) : p; }
   Eigen::Vector3d DirToA(const Eigen::Vector3d& v) const { return rotated ? Eigen::Vector3d(R * v) : v; }
   // Voxel centre in A, from integer coordinates (identical in every mode).
   Eigen::Vector3d VoxelCenterA(std::uint32_t leaf_node) const {
-    return ToA(tree->CubeCenter(leaf_node, 0));
+    const Eigen::Vector3d p =
+        tree->grid().origin_F + s * (oct->coord[leaf_node].cast<double>() + Eigen::Vector3d::Constant(0.5));
+    return ToA(p);
   }
+};
+
+// The separating-axis test of two cubes (A axis-aligned, B with axes R), each
+// grown by `grow`, with everything that depends only on the query precomputed:
+// the cubes have fixed sizes, so all 15 projection radii are constants.
+class CubePairTest {
+ public:
+  CubePairTest(double h_a, double h_b, const Eigen::Matrix3d& R, double grow) : R_(R) {
+    constexpr double kParallelSlack = 1e-12;  // keeps near-parallel cross axes conservative
+    const double a = h_a + grow;
+    const double b = h_b + grow;
+    const Eigen::Matrix3d absR = R.cwiseAbs().array() + kParallelSlack;
+    for (int i = 0; i < 3; ++i) {
+      face_a_[i] = a + b * absR.row(i).sum();
+      face_b_[i] = a * absR.col(i).sum() + b;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+      for (int j = 0; j < 3; ++j) {
+        const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+        cross_[i][j] = a * (absR(i1, j) + absR(i2, j)) + b * (absR(i, j1) + absR(i, j2));
+      }
+    }
+  }
+  /// T = centre of B minus centre of A, in A.
+  bool Overlap(const Eigen::Vector3d& T) const {
+    for (int i = 0; i < 3; ++i) {
+      if (std::abs(T[i]) > face_a_[i]) return false;
+    }
+    for (int j = 0; j < 3; ++j) {
+      if (std::abs(T.dot(R_.col(j))) > face_b_[j]) return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+      for (int j = 0; j < 3; ++j) {
+        if (std::abs(T[i2] * R_(i1, j) - T[i1] * R_(i2, j)) > cross_[i][j]) return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Matrix3d R_;
+  double face_a_[3], face_b_[3], cross_[3][3];
 };
 
 // A node on the stack: index, level, and a centre in A whose meaning depends on
@@ -69,11 +128,11 @@ struct Spheres<SphereMode::kSimple> {
   }
   static void Sphere(const Side& s, const NodeRef& n, Eigen::Vector3d* c, double* r) {
     *c = n.center;
-    *r = SimpleRadius(s.tree->edge(n.level));
+    *r = s.simple_radius[n.level];
   }
   static NodeRef Child(const Side& s, const NodeRef& parent, std::uint32_t child, int slot) {
     return {child, parent.level - 1,
-            parent.center + ChildCenterOffset(s.s, parent.level) * s.slot_dir[slot]};
+            parent.center + s.child_offset[parent.level] * s.slot_dir[slot]};
   }
 };
 
@@ -81,8 +140,8 @@ template <>
 struct Spheres<SphereMode::kOptimized> {
   static NodeRef Root(const Side& s) { return Spheres<SphereMode::kSimple>::Root(s); }
   static void Sphere(const Side& s, const NodeRef& n, Eigen::Vector3d* c, double* r) {
-    const UnitSphere& u = OptimizedSphereTable()[s.oct->child_mask[n.node]];
-    const double e = s.tree->edge(n.level);
+    const UnitSphere& u = s.table[s.oct->child_mask[n.node]];
+    const double e = s.edge[n.level];
     *c = n.center + e * s.DirToA(u.center);
     *r = e * u.radius;
   }
@@ -107,12 +166,60 @@ struct Spheres<SphereMode::kExplicit> {
   }
 };
 
+struct Slab {
+  Eigen::Vector3d n;  // unit normal in A
+  double lo, hi;      // range of (x - centre) . n over the node's voxels
+};
+
+Slab SlabOf(const Side& s, std::uint32_t node) {
+  const ExplicitSpheres& ex = s.tree->explicit_spheres();
+  const Eigen::Vector3d n_local(ex.nx[node], ex.ny[node], ex.nz[node]);
+  return {s.DirToA(n_local), ex.slab_lo[node], ex.slab_hi[node]};
+}
+
+// True when node q (sphere c_q, r_q and slab sq) lies entirely outside node p's
+// slab (centre c_p, slab sp), by more than tol. For y = x - c_q with |y| <= r_q
+// and y.n_q in [lo_q, hi_q]: y.n_p = (y.n_q) cos + y.w with |w| = sin, so
+// y.n_p lies in cos*[lo_q, hi_q] widened by r_q*sin, and in [-r_q, r_q].
+bool SlabSeparates(const Eigen::Vector3d& c_p, const Slab& sp, const Eigen::Vector3d& c_q, double r_q,
+                   const Slab& sq, double tol) {
+  const double cosv = sp.n.dot(sq.n);
+  const double sinv = std::sqrt(std::max(0.0, 1.0 - cosv * cosv));
+  const double base = (c_q - c_p).dot(sp.n);
+  const double a = sq.lo * cosv, b = sq.hi * cosv;
+  const double q_lo = base + std::max(std::min(a, b) - r_q * sinv, -r_q);
+  const double q_hi = base + std::min(std::max(a, b) + r_q * sinv, r_q);
+  return q_lo > sp.hi + tol || q_hi < sp.lo - tol;
+}
+
+// The node test: spheres (paper eq. 4) grown by `grow_sphere` each, then, in
+// explicit mode, the slabs both ways.
+template <SphereMode kMode>
+bool NodesOverlap(const Side& a, const Side& b, const NodeRef& na, const NodeRef& nb,
+                  double grow_sphere) {
+  Eigen::Vector3d ca, cb;
+  double ra = 0.0, rb = 0.0;
+  Spheres<kMode>::Sphere(a, na, &ca, &ra);
+  Spheres<kMode>::Sphere(b, nb, &cb, &rb);
+  const double reach = ra + rb + 2.0 * grow_sphere + kPruneSlackMm;
+  if ((ca - cb).squaredNorm() > reach * reach) return false;
+  if constexpr (kMode == SphereMode::kExplicit) {
+    const Slab sa = SlabOf(a, na.node);
+    const Slab sb = SlabOf(b, nb.node);
+    const double tol = 2.0 * grow_sphere + kPruneSlackMm;
+    if (SlabSeparates(ca, sa, cb, rb, sb, tol) || SlabSeparates(cb, sb, ca, ra, sa, tol)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 class Traversal {
  public:
   Traversal(const Side& a, const Side& b, const CollisionRequest& req, CollisionResult* res)
       : a_(a), b_(b), req_(req), res_(res),
         grow_sphere_(kCubeCircumradius * req.delta_mm),
-        h_a_(0.5 * a.s), h_b_(0.5 * b.s) {}
+        cube_test_(0.5 * a.s, 0.5 * b.s, b.R, 0.5 * req.delta_mm) {}
 
   template <SphereMode kMode>
   void Run(std::vector<Entry>* stack) {
@@ -129,7 +236,7 @@ class Traversal {
         continue;
       }
       const bool split_a = e.b.level == 0 ||
-                           (e.a.level > 0 && a_.tree->edge(e.a.level) >= b_.tree->edge(e.b.level));
+                           (e.a.level > 0 && a_.edge[e.a.level] >= b_.edge[e.b.level]);
       if (split_a) {
         if (!Split<kMode>(a_, e.a, e.b, true, stack)) return;
       } else {
@@ -142,12 +249,7 @@ class Traversal {
   template <SphereMode kMode>
   bool SpheresOverlap(const NodeRef& na, const NodeRef& nb) {
     ++res_->node_tests;
-    Eigen::Vector3d ca, cb;
-    double ra = 0.0, rb = 0.0;
-    Spheres<kMode>::Sphere(a_, na, &ca, &ra);
-    Spheres<kMode>::Sphere(b_, nb, &cb, &rb);
-    const double reach = ra + rb + 2.0 * grow_sphere_ + kPruneSlackMm;
-    return (ca - cb).squaredNorm() <= reach * reach;
+    return NodesOverlap<kMode>(a_, b_, na, nb, grow_sphere_);
   }
 
   // Splits `node` (of `side`) against `other`; returns false when the budget ran out.
@@ -173,7 +275,7 @@ class Traversal {
     ++res_->leaf_tests;
     const Eigen::Vector3d ca = a_.VoxelCenterA(e.a.node);
     const Eigen::Vector3d cb = b_.VoxelCenterA(e.b.node);
-    if (!GrownCubesOverlap(ca, h_a_, cb, h_b_, b_.R, 0.5 * req_.delta_mm)) return false;
+    if (!cube_test_.Overlap(cb - ca)) return false;
     res_->overlap = true;
     res_->pairs.push_back({e.a.node - a_.oct->leaf_begin(), e.b.node - b_.oct->leaf_begin()});
     return true;
@@ -184,7 +286,72 @@ class Traversal {
   const CollisionRequest& req_;
   CollisionResult* res_;
   double grow_sphere_;
-  double h_a_, h_b_;
+  CubePairTest cube_test_;
+};
+
+// One-sided descent for the oracle: B is split only down to `cell_level`, A
+// down to its voxels; a (voxel of A, cell of B) pair whose cubes, grown by
+// reach/2, overlap marks the cell, and a marked cell is never visited again.
+class CellTraversal {
+ public:
+  CellTraversal(const Side& a, const Side& b, const CellRequest& req, CellResult* res)
+      : a_(a), b_(b), req_(req), res_(res), grow_sphere_(kCubeCircumradius * req.reach_mm) {
+    for (int level = 0; level <= kMaxCellLevel; ++level) {
+      cube_tests_.emplace_back(0.5 * a.s, 0.5 * b.edge[level], b.R, 0.5 * req.reach_mm);
+    }
+  }
+
+  template <SphereMode kMode>
+  void Run(std::vector<Entry>* stack, std::vector<std::uint32_t>* stamps, std::uint32_t gen) {
+    using S = Spheres<kMode>;
+    stack->clear();
+    const Entry root{S::Root(a_), S::Root(b_)};
+    ++res_->node_tests;
+    if (!NodesOverlap<kMode>(a_, b_, root.a, root.b, grow_sphere_)) return;
+    stack->push_back(root);
+    const int cell = req_.cell_level;
+    while (!stack->empty()) {
+      const Entry e = stack->back();
+      stack->pop_back();
+      const bool b_is_cell = e.b.level <= cell;
+      if (b_is_cell && (*stamps)[e.b.node] == gen) continue;
+      if (b_is_cell && e.a.level <= req_.a_level && e.a.level > 0) {
+        // The node spheres (and slabs) already overlap: a coarse hit.
+        (*stamps)[e.b.node] = gen;
+        res_->cells_b.push_back(e.b.node);
+        continue;
+      }
+      if (b_is_cell && e.a.level == 0) {
+        ++res_->leaf_tests;
+        const Eigen::Vector3d cb = b_.ToA(b_.tree->CubeCenter(e.b.node, e.b.level));
+        if (cube_tests_[static_cast<std::size_t>(e.b.level)].Overlap(cb - a_.VoxelCenterA(e.a.node))) {
+          (*stamps)[e.b.node] = gen;
+          res_->cells_b.push_back(e.b.node);
+        }
+        continue;
+      }
+      const bool split_a = b_is_cell || (e.a.level > 0 && a_.edge[e.a.level] >= b_.edge[e.b.level]);
+      const Side& side = split_a ? a_ : b_;
+      const NodeRef& node = split_a ? e.a : e.b;
+      const NodeRef& other = split_a ? e.b : e.a;
+      std::uint32_t child = side.oct->first_child[node.node];
+      for (unsigned mask = side.oct->child_mask[node.node]; mask != 0; mask &= mask - 1, ++child) {
+        const NodeRef c = Spheres<kMode>::Child(side, node, child, __builtin_ctz(mask));
+        ++res_->node_tests;
+        const bool hit = split_a ? NodesOverlap<kMode>(a_, b_, c, other, grow_sphere_)
+                                 : NodesOverlap<kMode>(a_, b_, other, c, grow_sphere_);
+        if (hit) stack->push_back(split_a ? Entry{c, other} : Entry{other, c});
+      }
+    }
+  }
+
+ private:
+  const Side& a_;
+  const Side& b_;
+  const CellRequest& req_;
+  CellResult* res_;
+  double grow_sphere_;
+  std::vector<CubePairTest> cube_tests_;  // per B level 0..kMaxCellLevel
 };
 
 void Validate(const Eigen::Isometry3d& X_AB, const CollisionRequest& request) {
@@ -213,27 +380,7 @@ void CollisionResult::Clear() {
 
 bool GrownCubesOverlap(const Eigen::Vector3d& c_a, double h_a, const Eigen::Vector3d& c_b,
                        double h_b, const Eigen::Matrix3d& R, double grow) {
-  constexpr double kParallelSlack = 1e-12;  // keeps near-parallel cross axes conservative
-  const double a = h_a + grow;
-  const double b = h_b + grow;
-  const Eigen::Vector3d T = c_b - c_a;  // in A
-  Eigen::Matrix3d absR = R.cwiseAbs().array() + kParallelSlack;
-  for (int i = 0; i < 3; ++i) {  // A's face axes
-    if (std::abs(T[i]) > a + b * absR.row(i).sum()) return false;
-  }
-  for (int j = 0; j < 3; ++j) {  // B's face axes
-    if (std::abs(T.dot(R.col(j))) > a * absR.col(j).sum() + b) return false;
-  }
-  for (int i = 0; i < 3; ++i) {  // cross axes A_i x B_j
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double ra = a * (absR(i1, j) + absR(i2, j));
-      const double rb = b * (absR(i, j1) + absR(i, j2));
-      if (std::abs(T[i2] * R(i1, j) - T[i1] * R(i2, j)) > ra + rb) return false;
-    }
-  }
-  return true;
+  return CubePairTest(h_a, h_b, R, grow).Overlap(c_b - c_a);
 }
 
 void Collide(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& X_AB,
@@ -255,6 +402,44 @@ void Collide(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& 
     case SphereMode::kExplicit: traversal.Run<SphereMode::kExplicit>(&stack); break;
   }
   if (request.exact) RefineExact(a, b, X_AB, request.delta_mm, result);
+}
+
+void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& X_AB,
+                  const CellRequest& request, CellResult* result) {
+  if (!(request.reach_mm >= 0.0) || !std::isfinite(request.reach_mm)) {
+    throw std::invalid_argument("CellRequest.reach_mm must be finite and >= 0");
+  }
+  if (request.cell_level < 0 || request.cell_level > kMaxCellLevel) {
+    throw std::invalid_argument("CellRequest.cell_level must be in 0..3");
+  }
+  if (request.a_level < 0 || request.a_level > kMaxLevels - 1) {
+    throw std::invalid_argument("CellRequest.a_level must be >= 0");
+  }
+  CollisionRequest check;
+  Validate(X_AB, check);
+  result->cells_b.clear();
+  result->node_tests = result->leaf_tests = 0;
+  if (a.empty() || b.empty()) return;
+  thread_local std::vector<Entry> stack;
+  thread_local std::vector<std::uint32_t> stamps;
+  thread_local std::uint32_t generation = 0;
+  if (++generation == 0) {  // wrapped: forget every old stamp
+    std::fill(stamps.begin(), stamps.end(), 0u);
+    generation = 1;
+  }
+  if (stamps.size() < b.octree().num_nodes()) stamps.resize(b.octree().num_nodes(), 0u);
+  const Side side_a(a, Eigen::Isometry3d::Identity(), false);
+  const Side side_b(b, X_AB, true);
+  CellTraversal traversal(side_a, side_b, request, result);
+  SphereMode mode = request.spheres;
+  if (mode == SphereMode::kExplicit && (a.explicit_spheres().empty() || b.explicit_spheres().empty())) {
+    mode = SphereMode::kOptimized;
+  }
+  switch (mode) {
+    case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&stack, &stamps, generation); break;
+    case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&stack, &stamps, generation); break;
+    case SphereMode::kExplicit: traversal.Run<SphereMode::kExplicit>(&stack, &stamps, generation); break;
+  }
 }
 
 bool CollisionPair::Overlap(const Eigen::Isometry3d& X_AB, double delta_mm, SphereMode mode) const {

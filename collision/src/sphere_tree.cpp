@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "occlude/collision/sphere_table.h"
 
@@ -15,6 +16,81 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 double SphereVolume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
+
+// A node's normal counts as coherent when the summed area-weighted normals keep
+// at least this fraction of the summed areas (otherwise the surface folds back
+// within the node and a slab would be as thick as the sphere).
+constexpr double kCoherentNormal = 0.2;
+
+// Computes the slabs of `ex` (spheres already set): normals bottom-up from the
+// triangles of each voxel, then each voxel cube's projection range onto every
+// ancestor's normal.
+void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octree& oct,
+                ExplicitSpheres* ex) {
+  const std::size_t n = oct.num_nodes();
+  std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
+  std::vector<double> area(n, 0.0);
+  std::vector<std::uint32_t> parent(n, 0);
+  for (std::uint32_t node = 0; node < oct.leaf_begin(); ++node) {
+    std::uint32_t child = oct.first_child[node];
+    for (unsigned m = oct.child_mask[node]; m != 0; m &= m - 1) parent[child++] = node;
+  }
+  for (std::size_t v = 0; v < grid.num_surface(); ++v) {
+    const std::size_t leaf = oct.leaf_begin() + v;
+    for (auto i = grid.triangles_begin(v); i < grid.triangles_end(v); ++i) {
+      const std::uint32_t t = grid.triangle_indices[i];
+      const Eigen::Vector3d cross =
+          (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+      sum[leaf] += cross;  // 2 * area * normal
+      area[leaf] += cross.norm();
+    }
+  }
+  for (std::size_t node = n; node-- > 1;) {  // children have larger indices than parents
+    sum[parent[node]] += sum[node];
+    area[parent[node]] += area[node];
+  }
+  std::vector<Eigen::Vector3d> normal(n);
+  std::vector<double> lo(n, std::numeric_limits<double>::infinity());
+  std::vector<double> hi(n, -std::numeric_limits<double>::infinity());
+  std::vector<bool> coherent(n);
+  ex->nx.resize(n);
+  ex->ny.resize(n);
+  ex->nz.resize(n);
+  for (std::size_t node = 0; node < n; ++node) {
+    const double len = sum[node].norm();
+    coherent[node] = area[node] > 0.0 && len >= kCoherentNormal * area[node];
+    const Eigen::Vector3d unit = coherent[node] ? Eigen::Vector3d(sum[node] / len) : Eigen::Vector3d::UnitZ();
+    // Store as float and use the float value everywhere, so build and query agree.
+    ex->nx[node] = static_cast<float>(unit.x());
+    ex->ny[node] = static_cast<float>(unit.y());
+    ex->nz[node] = static_cast<float>(unit.z());
+    normal[node] = Eigen::Vector3d(ex->nx[node], ex->ny[node], ex->nz[node]);
+  }
+  const double h = 0.5 * grid.voxel_size_mm;
+  for (std::size_t v = 0; v < grid.num_surface(); ++v) {
+    const std::uint32_t leaf = oct.leaf_begin() + static_cast<std::uint32_t>(v);
+    const Eigen::Vector3d c =
+        grid.origin_F + grid.voxel_size_mm * (oct.coord[leaf].cast<double>() + Eigen::Vector3d::Constant(0.5));
+    for (std::uint32_t node = leaf;; node = parent[node]) {
+      const Eigen::Vector3d centre(ex->cx[node], ex->cy[node], ex->cz[node]);
+      const double proj = (c - centre).dot(normal[node]);
+      const double half = h * normal[node].cwiseAbs().sum();
+      lo[node] = std::min(lo[node], proj - half);
+      hi[node] = std::max(hi[node], proj + half);
+      if (node == 0) break;
+    }
+  }
+  ex->slab_lo.resize(n);
+  ex->slab_hi.resize(n);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (std::size_t node = 0; node < n; ++node) {
+    const double r = ex->radius[node];
+    const double l = coherent[node] ? std::max(lo[node], -r) : -r;
+    const double u = coherent[node] ? std::min(hi[node], r) : r;
+    ex->slab_lo[node] = std::nextafter(static_cast<float>(l), -kInf);
+    ex->slab_hi[node] = std::nextafter(static_cast<float>(u), kInf);
+  }
+}
 
 }  // namespace
 
@@ -28,7 +104,9 @@ const char* ToString(SphereMode mode) {
 }
 
 std::size_t ExplicitSpheres::MemoryBytes() const {
-  return (cx.capacity() + cy.capacity() + cz.capacity() + radius.capacity()) * sizeof(double);
+  return (cx.capacity() + cy.capacity() + cz.capacity() + radius.capacity()) * sizeof(double) +
+         (nx.capacity() + ny.capacity() + nz.capacity() + slab_lo.capacity() + slab_hi.capacity()) *
+             sizeof(float);
 }
 
 Eigen::Vector3d SphereTree::CubeCenter(std::size_t node, int level) const {
@@ -82,6 +160,7 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
         ex.cz[i] = c.z();
       }
     }
+    BuildSlabs(*tree.mesh_, tree.grid_, oct, &ex);
     tree.stats_.seconds_explicit = SecondsSince(start);
   }
 

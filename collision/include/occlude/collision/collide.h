@@ -98,6 +98,29 @@ class CollisionPair {
   const SphereTree& b_;
 };
 
+/// One-sided query (the oracle's broad phase): the nodes ("cells") of B at
+/// `cell_level` whose voxels come within reach of a voxel of A, by the same
+/// conservative grown-cube test as the pair query (cell cube and voxel cube each
+/// grown by reach_mm / 2). Each cell is reported once; every point of B's
+/// surface within reach_mm of A's surface lies in a reported cell.
+struct CellRequest {
+  SphereMode spheres = SphereMode::kExplicit;
+  double reach_mm = 0.3;  ///< mm, >= 0
+  int cell_level = 1;     ///< 0 (voxels) .. 3
+  /// A is descended down to this level: 0 = to its voxels, with the exact
+  /// grown-cube test; above 0 a cell is reported as soon as its sphere (and slab)
+  /// meets an A node of this level: fewer tests, more (still conservative) cells.
+  int a_level = 0;
+};
+struct CellResult {
+  std::vector<std::uint32_t> cells_b;  ///< octree node indices of B, in traversal order
+  std::size_t node_tests = 0;
+  std::size_t leaf_tests = 0;
+};
+/// Thread-safe (per-thread scratch). Throws std::invalid_argument like Collide.
+void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& X_AB,
+                  const CellRequest& request, CellResult* result);
+
 /// Exact separating-axis test of two cubes grown by `grow` (>= 0) on each face:
 /// cube A axis-aligned in A with centre c_a and half-edge h_a, cube B with
 /// centre c_b (in A), axes the columns of R_AB and half-edge h_b. Exposed for tests.

@@ -55,9 +55,19 @@ struct SphereTreeStats {
 };
 
 /// Explicit spheres, structure of arrays indexed by octree node (frame F, mm).
+///
+/// Besides the sphere, each node stores a slab: a unit normal n (the
+/// area-weighted mean of its triangles' normals) and the range [lo, hi] of
+/// (x - centre) . n over every voxel cube x beneath it. The node's voxels lie in
+/// sphere AND slab, and the slab is thin where the surface is flat, which is
+/// where spheres are weakest (two occlusal surfaces facing each other). Nodes
+/// whose normals cancel get lo = -radius, hi = radius (the slab then adds
+/// nothing). Normals are float; lo and hi are rounded outward, so the slab is
+/// conservative.
 struct ExplicitSpheres {
   SphereMode from = SphereMode::kOptimized;
   std::vector<double> cx, cy, cz, radius;
+  std::vector<float> nx, ny, nz, slab_lo, slab_hi;
   bool empty() const { return radius.empty(); }
   std::size_t MemoryBytes() const;
 };
