@@ -1,0 +1,39 @@
+// Wall-clock timing helpers for the commands (benchmarks report medians, since
+// the machines are shared and noisy).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace occlude::app {
+
+inline double NowSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Median and maximum of a sample (sorted in place); zeros for an empty sample.
+struct Summary {
+  double median = 0.0;
+  double max = 0.0;
+};
+inline Summary Summarize(std::vector<double>* sample) {
+  if (sample->empty()) return {};
+  std::sort(sample->begin(), sample->end());
+  return {(*sample)[sample->size() / 2], sample->back()};
+}
+
+/// Runs f() `reps` times and returns median and max microseconds per call.
+template <class F>
+Summary TimeMicros(F&& f, int reps) {
+  std::vector<double> us;
+  us.reserve(static_cast<std::size_t>(reps));
+  for (int i = 0; i < reps; ++i) {
+    const double t0 = NowSeconds();
+    f();
+    us.push_back(1e6 * (NowSeconds() - t0));
+  }
+  return Summarize(&us);
+}
+
+}  // namespace occlude::app
