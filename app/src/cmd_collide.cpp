@@ -10,6 +10,7 @@
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"
 #include "pose_file.h"
+#include "sweep.h"
 #include "timing.h"
 #include "tree_report.h"
 
@@ -23,7 +24,27 @@ struct CollideArgs {
   double voxel_mm = 0.2;
   double delta_mm = 0.1;
   std::string out;
+  bool sweep = false;
+  std::string axis = "y";
+  int reps = 30;
 };
+
+// "x", "y", "z" with an optional sign ("-z").
+Eigen::Vector3d ParseAxis(const std::string& text) {
+  const bool negative = !text.empty() && text[0] == '-';
+  const std::string name = negative || (!text.empty() && text[0] == '+') ? text.substr(1) : text;
+  Eigen::Vector3d axis;
+  if (name == "x") {
+    axis = Eigen::Vector3d::UnitX();
+  } else if (name == "y") {
+    axis = Eigen::Vector3d::UnitY();
+  } else if (name == "z") {
+    axis = Eigen::Vector3d::UnitZ();
+  } else {
+    throw UserError("--axis: '" + text + "' is not an axis (use x, y, z, -x, -y or -z)");
+  }
+  return negative ? Eigen::Vector3d(-axis) : axis;
+}
 
 std::shared_ptr<io::TriangleMesh> LoadJawOrExplain(const std::vector<std::string>& files,
                                                    io::LengthUnit unit) {
@@ -80,6 +101,26 @@ void RunCollide(const CollideArgs& args) {
                                                    : "more than the band")
             << "\n";
   if (!args.out.empty()) WriteFileAtomic(std::filesystem::path(args.out) / "collide.json", s.str());
+  if (!args.sweep) return;
+
+  SweepOptions sweep;
+  sweep.axis_L = ParseAxis(args.axis);
+  sweep.delta_mm = args.delta_mm;
+  sweep.reps = args.reps;
+  sweep.modes = {collision::SphereMode::kSimple, collision::SphereMode::kOptimized,
+                 collision::SphereMode::kExplicit};
+  const collision::CollisionPair pair(lower, upper);
+  const std::vector<SweepRow> rows = RunSweep(pair, X_LU, sweep);
+  std::ostringstream table;
+  table << "Sweep along " << args.axis << " from the given pose (offset > 0 = open); voxel "
+        << args.voxel_mm << " mm, delta " << args.delta_mm << " mm; median of " << args.reps
+        << " runs, one thread; times in microseconds\n"
+        << SweepTable(rows);
+  std::cout << table.str();
+  if (!args.out.empty()) {
+    WriteFileAtomic(std::filesystem::path(args.out) / "sweep.txt", table.str());
+    WriteFileAtomic(std::filesystem::path(args.out) / "sweep.json", SweepJson(rows) + "\n");
+  }
 }
 
 }  // namespace
@@ -97,7 +138,13 @@ void AddCollideCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
       ->check(CLI::Range(0.0, 5.0));
-  cmd->add_option("--out", args->out, "Output folder for collide.json (optional)");
+  cmd->add_option("--out", args->out, "Output folder for collide.json (and sweep.txt/json)");
+  cmd->add_flag("--sweep", args->sweep,
+                "Also sweep the upper jaw along --axis through the pose, timing every sphere mode");
+  cmd->add_option("--axis", args->axis, "Sweep axis, lower to upper: x, y, z, -x, -y, -z")
+      ->capture_default_str();
+  cmd->add_option("--reps", args->reps, "Repetitions per timed query in the sweep")
+      ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->callback([args] { RunCollide(*args); });
 }
 

@@ -12,6 +12,7 @@
 #include "occlude/collision/collide.h"
 #include "output_files.h"
 #include "synthetic_case.h"
+#include "sweep.h"
 #include "timing.h"
 #include "tree_report.h"
 
@@ -26,49 +27,6 @@ struct DemoArgs {
   int reps = 30;
   std::string out = "out/demo";
 };
-
-struct OffsetRow {
-  double offset_mm = 0.0;
-  bool overlap = false;
-  Summary boolean_us, pairs_us, exact_us;
-  std::size_t pairs = 0, contacts = 0;
-  double min_distance_mm = 0.0;
-  bool intersect = false;
-};
-
-OffsetRow Measure(const collision::CollisionPair& pair, const Eigen::Isometry3d& X_LU,
-                  const DemoArgs& args) {
-  OffsetRow row;
-  collision::CollisionRequest req;
-  collision::CollisionResult res;
-  req.first_only = true;
-  row.boolean_us = TimeMicros([&] { pair.Query(X_LU, req, &res); }, args.reps);
-  row.overlap = res.overlap;
-  req.first_only = false;
-  req.delta_mm = args.delta_mm;
-  row.pairs_us = TimeMicros([&] { pair.Query(X_LU, req, &res); }, args.reps);
-  row.pairs = res.pairs.size();
-  req.exact = true;
-  row.exact_us = TimeMicros([&] { pair.Query(X_LU, req, &res); }, std::max(1, args.reps / 5));
-  row.contacts = res.contacts.size();
-  row.min_distance_mm = res.min_distance_mm;
-  row.intersect = res.triangles_intersect;
-  return row;
-}
-
-std::string RowText(const OffsetRow& r) {
-  char line[256];
-  char dist[32];
-  if (std::isfinite(r.min_distance_mm)) {
-    std::snprintf(dist, sizeof dist, "%.4f", r.min_distance_mm);
-  } else {
-    std::snprintf(dist, sizeof dist, "> delta");
-  }
-  std::snprintf(line, sizeof line, "%+7.2f  %-7s %9.1f  %8zu %9.1f  %8zu %9s  %-9s %9.1f", r.offset_mm,
-                r.overlap ? "yes" : "no", r.boolean_us.median, r.pairs, r.pairs_us.median,
-                r.contacts, dist, r.intersect ? "yes" : "no", r.exact_us.median);
-  return line;
-}
 
 void RunDemo(const DemoArgs& args) {
   PrepareOutputDir(args.out);
@@ -92,27 +50,18 @@ void RunDemo(const DemoArgs& args) {
             << "\n  " << DescribeTree("upper", upper) << "\n";
 
   const collision::CollisionPair pair(lower, upper);  // A = lower (frame L), B = upper (frame U)
+  SweepOptions sweep;
+  sweep.axis_L = jaws.occlusal_axis_L;
+  sweep.delta_mm = args.delta_mm;
+  sweep.reps = args.reps;
+  sweep.offsets_mm = {2.0, 1.0, 0.5, 0.3, 0.2, 0.1, 0.05, 0.0, -0.05, -0.1, -0.2};
+  const std::vector<SweepRow> rows = RunSweep(pair, jaws.X_LU, sweep);
   std::ostringstream table;
   table << "Upper jaw moved along the occlusal axis from the ground-truth bite (offset > 0 = open).\n"
-        << "voxel " << args.voxel_mm << " mm, delta " << args.delta_mm << " mm, median of "
-        << args.reps << " runs, one thread; times in microseconds\n"
-        << " offset  overlap  bool_us     pairs  pairs_us  contacts  min_dist  intersect  exact_us\n";
-  std::ostringstream rows_json;
-  const double offsets[] = {2.0, 1.0, 0.5, 0.3, 0.2, 0.1, 0.05, 0.0, -0.05, -0.1, -0.2};
-  for (const double offset : offsets) {
-    const Eigen::Isometry3d X_LU = Eigen::Translation3d(offset * jaws.occlusal_axis_L) * jaws.X_LU;
-    OffsetRow row = Measure(pair, X_LU, args);
-    row.offset_mm = offset;
-    table << RowText(row) << "\n";
-    rows_json << (offset == offsets[0] ? "\n    " : ",\n    ") << "{\"offset_mm\": " << offset
-              << ", \"overlap\": " << (row.overlap ? "true" : "false")
-              << ", \"boolean_median_us\": " << row.boolean_us.median
-              << ", \"voxel_pairs\": " << row.pairs << ", \"pairs_median_us\": " << row.pairs_us.median
-              << ", \"exact_contacts\": " << row.contacts << ", \"min_distance_mm\": "
-              << (std::isfinite(row.min_distance_mm) ? std::to_string(row.min_distance_mm) : "null")
-              << ", \"triangles_intersect\": " << (row.intersect ? "true" : "false")
-              << ", \"exact_median_us\": " << row.exact_us.median << "}";
-  }
+        << "voxel " << args.voxel_mm << " mm, delta " << args.delta_mm << " mm, explicit sphere tree, "
+        << "median of " << args.reps << " runs (pairs: " << std::max(1, args.reps / 3)
+        << ", exact: " << std::max(1, args.reps / 10) << "), one thread; times in microseconds\n"
+        << SweepTable(rows);
   std::cout << table.str();
 
   WriteSyntheticCase(jaws, options, args.out);
@@ -120,7 +69,7 @@ void RunDemo(const DemoArgs& args) {
   json << "{\n  \"triangles_per_jaw\": " << args.triangles << ", \"seed\": " << args.seed
        << ", \"voxel_mm\": " << args.voxel_mm << ", \"delta_mm\": " << args.delta_mm
        << ",\n  \"lower_tree\": " << TreeJson(lower) << ",\n  \"upper_tree\": " << TreeJson(upper)
-       << ",\n  \"sweep\": [" << rows_json.str() << "\n  ]\n}\n";
+       << ",\n  \"sweep\": " << SweepJson(rows) << "\n}\n";
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.json", json.str());
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.txt", table.str());
   std::cout << "demo: wrote " << args.out << "/{upper.stl, lower.stl, truth.json, demo.json, demo.txt}\n";

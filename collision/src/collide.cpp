@@ -33,6 +33,7 @@ struct Side {
   const SphereTree* tree;
   const Octree* oct;
   const UnitSphere* table;  // OptimizedSphereTable()
+  const ExplicitNode* ex;   // explicit records (null when not built)
   Eigen::Matrix3d R;      // rotation of this tree's frame into A
   Eigen::Vector3d t;      // translation of this tree's frame into A
   Eigen::Vector3d slot_dir[8];  // R * ChildSlotSign(k)
@@ -43,7 +44,8 @@ struct Side {
   double child_offset[kMaxLevels];   // ChildCenterOffset(s, level)
 
   Side(const SphereTree& tr, const Eigen::Isometry3d& X, bool is_rotated)
-      : tree(&tr), oct(&tr.octree()), table(OptimizedSphereTable().data()), R(X.linear()),
+      : tree(&tr), oct(&tr.octree()), table(OptimizedSphereTable().data()),
+        ex(tr.explicit_spheres().nodes.empty() ? nullptr : tr.explicit_spheres().nodes.data()), R(X.linear()),
         t(X.translation()), s(tr.voxel_size_mm()), rotated(is_rotated) {
     for (int k = 0; k < 8; ++k) slot_dir[k] = R * ChildSlotSign(k);
     for (int level = 0; level < kMaxLevels; ++level) {
@@ -153,13 +155,13 @@ struct Spheres<SphereMode::kOptimized> {
 template <>
 struct Spheres<SphereMode::kExplicit> {
   static NodeRef At(const Side& s, std::uint32_t node, int level) {
-    const ExplicitSpheres& ex = s.tree->explicit_spheres();
-    return {node, level, s.ToA(Eigen::Vector3d(ex.cx[node], ex.cy[node], ex.cz[node]))};
+    const ExplicitNode& rec = s.ex[node];
+    return {node, level, s.ToA(Eigen::Vector3d(rec.cx, rec.cy, rec.cz))};
   }
   static NodeRef Root(const Side& s) { return At(s, 0, s.oct->top_level); }
   static void Sphere(const Side& s, const NodeRef& n, Eigen::Vector3d* c, double* r) {
     *c = n.center;
-    *r = s.tree->explicit_spheres().radius[n.node];
+    *r = s.ex[n.node].radius;
   }
   static NodeRef Child(const Side& s, const NodeRef& parent, std::uint32_t child, int /*slot*/) {
     return At(s, child, parent.level - 1);
@@ -172,9 +174,8 @@ struct Slab {
 };
 
 Slab SlabOf(const Side& s, std::uint32_t node) {
-  const ExplicitSpheres& ex = s.tree->explicit_spheres();
-  const Eigen::Vector3d n_local(ex.nx[node], ex.ny[node], ex.nz[node]);
-  return {s.DirToA(n_local), ex.slab_lo[node], ex.slab_hi[node]};
+  const ExplicitNode& rec = s.ex[node];
+  return {s.DirToA(Eigen::Vector3d(rec.nx, rec.ny, rec.nz)), rec.slab_lo, rec.slab_hi};
 }
 
 // True when node q (sphere c_q, r_q and slab sq) lies entirely outside node p's
@@ -330,7 +331,9 @@ class CellTraversal {
         }
         continue;
       }
-      const bool split_a = b_is_cell || (e.a.level > 0 && a_.edge[e.a.level] >= b_.edge[e.b.level]);
+      // A is not split below a_level while B still has to reach its cells.
+      const int a_floor = b_is_cell ? 0 : req_.a_level;
+      const bool split_a = e.a.level > a_floor && (b_is_cell || a_.edge[e.a.level] >= b_.edge[e.b.level]);
       const Side& side = split_a ? a_ : b_;
       const NodeRef& node = split_a ? e.a : e.b;
       const NodeRef& other = split_a ? e.b : e.a;

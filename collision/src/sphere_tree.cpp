@@ -53,18 +53,16 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
   std::vector<double> lo(n, std::numeric_limits<double>::infinity());
   std::vector<double> hi(n, -std::numeric_limits<double>::infinity());
   std::vector<bool> coherent(n);
-  ex->nx.resize(n);
-  ex->ny.resize(n);
-  ex->nz.resize(n);
   for (std::size_t node = 0; node < n; ++node) {
     const double len = sum[node].norm();
     coherent[node] = area[node] > 0.0 && len >= kCoherentNormal * area[node];
     const Eigen::Vector3d unit = coherent[node] ? Eigen::Vector3d(sum[node] / len) : Eigen::Vector3d::UnitZ();
     // Store as float and use the float value everywhere, so build and query agree.
-    ex->nx[node] = static_cast<float>(unit.x());
-    ex->ny[node] = static_cast<float>(unit.y());
-    ex->nz[node] = static_cast<float>(unit.z());
-    normal[node] = Eigen::Vector3d(ex->nx[node], ex->ny[node], ex->nz[node]);
+    ExplicitNode& rec = ex->nodes[node];
+    rec.nx = static_cast<float>(unit.x());
+    rec.ny = static_cast<float>(unit.y());
+    rec.nz = static_cast<float>(unit.z());
+    normal[node] = Eigen::Vector3d(rec.nx, rec.ny, rec.nz);
   }
   const double h = 0.5 * grid.voxel_size_mm;
   for (std::size_t v = 0; v < grid.num_surface(); ++v) {
@@ -72,7 +70,8 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
     const Eigen::Vector3d c =
         grid.origin_F + grid.voxel_size_mm * (oct.coord[leaf].cast<double>() + Eigen::Vector3d::Constant(0.5));
     for (std::uint32_t node = leaf;; node = parent[node]) {
-      const Eigen::Vector3d centre(ex->cx[node], ex->cy[node], ex->cz[node]);
+      const ExplicitNode& rec = ex->nodes[node];
+      const Eigen::Vector3d centre(rec.cx, rec.cy, rec.cz);
       const double proj = (c - centre).dot(normal[node]);
       const double half = h * normal[node].cwiseAbs().sum();
       lo[node] = std::min(lo[node], proj - half);
@@ -80,15 +79,13 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
       if (node == 0) break;
     }
   }
-  ex->slab_lo.resize(n);
-  ex->slab_hi.resize(n);
   constexpr float kInf = std::numeric_limits<float>::infinity();
   for (std::size_t node = 0; node < n; ++node) {
-    const double r = ex->radius[node];
+    const double r = ex->nodes[node].radius;
     const double l = coherent[node] ? std::max(lo[node], -r) : -r;
     const double u = coherent[node] ? std::min(hi[node], r) : r;
-    ex->slab_lo[node] = std::nextafter(static_cast<float>(l), -kInf);
-    ex->slab_hi[node] = std::nextafter(static_cast<float>(u), kInf);
+    ex->nodes[node].slab_lo = std::nextafter(static_cast<float>(l), -kInf);
+    ex->nodes[node].slab_hi = std::nextafter(static_cast<float>(u), kInf);
   }
 }
 
@@ -103,11 +100,6 @@ const char* ToString(SphereMode mode) {
   return "?";
 }
 
-std::size_t ExplicitSpheres::MemoryBytes() const {
-  return (cx.capacity() + cy.capacity() + cz.capacity() + radius.capacity()) * sizeof(double) +
-         (nx.capacity() + ny.capacity() + nz.capacity() + slab_lo.capacity() + slab_hi.capacity()) *
-             sizeof(float);
-}
 
 Eigen::Vector3d SphereTree::CubeCenter(std::size_t node, int level) const {
   return grid_.origin_F +
@@ -147,17 +139,14 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
     ExplicitSpheres& ex = tree.explicit_;
     ex.from = from;
     const std::size_t n = oct.num_nodes();
-    ex.cx.resize(n);
-    ex.cy.resize(n);
-    ex.cz.resize(n);
-    ex.radius.resize(n);
+    ex.nodes.resize(n);
     for (int level = oct.top_level; level >= 0; --level) {
       for (std::uint32_t i = oct.level_begin[level]; i < oct.level_end[level]; ++i) {
         Eigen::Vector3d c;
-        tree.ImplicitSphere(i, level, from, &c, &ex.radius[i]);
-        ex.cx[i] = c.x();
-        ex.cy[i] = c.y();
-        ex.cz[i] = c.z();
+        tree.ImplicitSphere(i, level, from, &c, &ex.nodes[i].radius);
+        ex.nodes[i].cx = c.x();
+        ex.nodes[i].cy = c.y();
+        ex.nodes[i].cz = c.z();
       }
     }
     BuildSlabs(*tree.mesh_, tree.grid_, oct, &ex);
