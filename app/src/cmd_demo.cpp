@@ -60,7 +60,7 @@ void RunDemo(const DemoArgs& args) {
   table << "Upper jaw moved along the occlusal axis from the ground-truth bite (offset > 0 = open).\n"
         << "voxel " << args.voxel_mm << " mm, delta " << args.delta_mm << " mm, explicit sphere tree, "
         << "median of " << args.reps << " runs (pairs: " << std::max(1, args.reps / 3)
-        << ", exact: " << std::max(1, args.reps / 10) << "), one thread; times in microseconds\n"
+        << ", exact: " << std::max(1, args.reps / 10) << "), one thread; thread CPU time in microseconds\n"
         << SweepTable(rows);
   std::cout << table.str();
 

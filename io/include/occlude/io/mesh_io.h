@@ -61,15 +61,14 @@ class MeshError : public std::runtime_error {
 /// Loads one mesh file (.stl binary or ASCII, .obj, .ply; chosen by extension,
 /// any case; binary vs ASCII STL by content). Result: welded vertices in mm in
 /// the file's frame, numbered in order of first use; triangles in file order
-/// (OBJ: grouped per object/material as assimp splits them; polygons are
-/// triangulated) keeping the file's corner order (CCW = outward); face
-/// normals recomputed from the corners (file normals are ignored); one MeshPart
-/// named after the file stem with tooth_number from ToothNumberFromFileName.
-/// Degenerate triangles are dropped (warning); a largest extent outside
-/// 5..500 mm gives a units warning naming the fitting `units` setting.
-/// STL is read by occlude itself (binary: float coordinates exactly; ASCII:
-/// correctly rounded doubles); OBJ and PLY are validated by occlude, then
-/// imported by assimp (float precision).
+/// (an OBJ/PLY polygon becomes several triangles in its place) keeping the
+/// file's corner order (CCW = outward); face normals recomputed from the
+/// corners (file normals are ignored); one MeshPart named after the file stem
+/// with tooth_number from ToothNumberFromFileName. Degenerate triangles are
+/// dropped (warning); a largest extent outside 5..500 mm gives a units warning
+/// naming the fitting `units` setting. STL is read by occlude itself (binary:
+/// float coordinates exactly; ASCII: correctly rounded doubles); OBJ and PLY
+/// are validated by occlude, then imported by assimp (float precision).
 /// Throws MeshError.
 TriangleMesh LoadMesh(const std::filesystem::path& file, const LoadOptions& options = {},
                       LoadReport* report = nullptr);

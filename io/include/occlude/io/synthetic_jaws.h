@@ -7,14 +7,16 @@
 // lower along +y):
 //   L  lower jaw frame: x towards the patient's left, y up (occlusal axis, lower -> upper),
 //      z anterior (towards the incisors). Origin on the midline, at the level of the lower
-//      cusp tips (occlusal plane), half-way between the incisal edges and the distal ends of
-//      the second molars.
+//      cusp tips (occlusal plane), half-way along z between the front of the arch and the
+//      distal ends of the second molars.
 //   U  upper jaw frame: axes parallel to L's at the bite; origin on the midline, at the level
 //      of the upper posterior cusp tips (the centre of the upper occlusal surface), which is
 //      1.5 mm below L's origin because upper cusps overlap the lower ones vertically (overbite)
 //      and seat in their fossae. X_LU is therefore a pure translation (0, -1.5, 0) mm.
 // Both meshes are single closed, edge-manifold, outward-oriented, non-self-intersecting
-// surfaces (a "horseshoe slab": occlusal height field, vertical side walls, flat back).
+// surfaces (a "horseshoe slab": occlusal height field, vertical side walls, flat back), about
+// 70 x 58 mm in xz with gingiva; the lower arch is about 54 mm wide across the middle of the
+// first molar crowns (57 mm at their widest) and 48 mm deep.
 #pragma once
 
 #include <Eigen/Core>
