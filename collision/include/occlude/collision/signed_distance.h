@@ -1,0 +1,280 @@
+// Signed distance from a point to a triangle mesh: exact (closest triangle,
+// signed by angle-weighted pseudo-normals, Baerentzen & Aanaes 2005) and as a
+// narrow-band field of trilinear voxels around the surface.
+//
+// Frame and units: everything is in the mesh's frame F, in mm.
+// Sign: distance > 0 outside (the side the outward face normals point to),
+// < 0 inside. The sign comes from surface orientation only, never from an
+// inside/outside test, so it is defined for open meshes (scans, gingiva) and
+// for multi-shell meshes (one closed shell per tooth plus an open gingiva).
+// Limitation: with several shells the sign is the one with respect to the
+// nearest shell's surface; a point inside shell A but nearer to a face of an
+// overlapping shell B that lies inside A gets B's sign (positive when outside B).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "occlude/collision/voxel_grid.h"
+#include "occlude/io/triangle_mesh.h"
+
+namespace occlude::collision {
+
+/// Pseudo-normals of a mesh for signing distances (computed once, O(T log T)).
+/// Face normal: unit (b - a) x (c - a) (zero for a degenerate face). Edge
+/// pseudo-normal: sum of the face normals of the faces sharing the edge (one
+/// face on a boundary edge of an open mesh; all of them on a non-manifold
+/// edge). Vertex pseudo-normal: sum over incident faces of the face normal
+/// times the face's angle at the vertex. Stored as floats (only directions
+/// matter; the sign test has a wide margin except for p on the surface).
+class PseudoNormals {
+ public:
+  PseudoNormals() = default;
+  explicit PseudoNormals(const io::TriangleMesh& mesh);
+
+  /// Pseudo-normal (not unit) at the closest point of triangle t given the
+  /// barycentric weights of that point: the vertex one when two weights are
+  /// ~0 (below kZeroWeight), the edge one when one weight is ~0, else the face
+  /// normal.
+  Eigen::Vector3d At(std::uint32_t t, const Eigen::Vector3d& barycentric) const;
+
+  /// Unit face normal of t (zero when degenerate).
+  Eigen::Vector3d Face(std::uint32_t t) const { return faces_[t].cast<double>(); }
+  /// Pseudo-normal of edge k of t: the edge opposite corner k.
+  Eigen::Vector3d Edge(std::uint32_t t, int k) const { return edges_[3 * t + k].cast<double>(); }
+  /// Pseudo-normal of vertex v.
+  Eigen::Vector3d Vertex(std::uint32_t v) const { return vertices_[v].cast<double>(); }
+
+  std::size_t num_triangles() const { return faces_.size(); }
+  std::size_t MemoryBytes() const;
+
+  /// Barycentric weights below this count as zero (point on an edge/vertex).
+  static constexpr double kZeroWeight = 1e-9;
+
+ private:
+  std::vector<Eigen::Vector3f> faces_;     ///< per triangle
+  std::vector<Eigen::Vector3f> edges_;     ///< 3 per triangle (edge k opposite corner k)
+  std::vector<Eigen::Vector3f> vertices_;  ///< per vertex
+  std::vector<Eigen::Vector3i> corners_;   ///< vertex indices per triangle
+};
+
+struct SignedDistanceSample {
+  double distance = 0.0;                              ///< signed, mm
+  Eigen::Vector3d closest = Eigen::Vector3d::Zero();  ///< closest point on the mesh, F
+  /// Unit gradient of the signed distance at the query point: (p - closest) /
+  /// |p - closest| times the sign; the unit pseudo-normal when p is on the surface.
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  std::uint32_t triangle = 0;  ///< the closest triangle
+};
+
+/// Signed distance from p_F to `mesh` by brute force over all triangles
+/// (reference for tests; O(T)). False for an empty mesh.
+bool SignedDistanceBruteForce(const io::TriangleMesh& mesh, const PseudoNormals& normals,
+                              const Eigen::Vector3d& p_F, SignedDistanceSample* out);
+
+struct NarrowBandOptions {
+  /// Band = surface voxels dilated by this many voxels (cube neighbourhood,
+  /// both sides of the surface); in [0, 16].
+  int dilation_voxels = 2;
+};
+
+namespace detail {
+
+/// Open-addressing hash from a 64-bit key (never ~0) to a 32-bit value:
+/// power-of-two capacity, load <= 3/4, linear probing, splitmix64 finaliser.
+class KeyIndexHash {
+ public:
+  static constexpr std::uint32_t kNotFound = 0xffffffffu;
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+  /// Empties the table and sizes it for `n` keys.
+  void Reset(std::size_t n);
+  /// Value of `key`, inserting `value` when absent; *inserted says which.
+  std::uint32_t Insert(std::uint64_t key, std::uint32_t value, bool* inserted);
+  /// Value of `key` or kNotFound.
+  std::uint32_t Find(std::uint64_t key) const {
+    if (slots_.empty()) return kNotFound;
+    for (std::size_t i = Mix(key) & mask_;; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.key == key) return s.value;
+      if (s.key == kEmpty) return kNotFound;
+    }
+  }
+  std::size_t size() const { return size_; }
+  std::size_t MemoryBytes() const { return slots_.capacity() * sizeof(Slot); }
+
+  static std::uint64_t Mix(std::uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31;
+    return x;
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t value = 0;
+  };
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  std::size_t size_ = 0;
+};
+
+/// A sparse set of voxels stored as 4x4x4 bricks: brick key (voxel Morton key
+/// >> 6) -> 64-bit occupancy mask (bit = voxel key & 63). After Finish(), the
+/// bricks are sorted by key and Rank(key) is the voxel's index in the sorted
+/// order of all voxel keys of the set.
+class BrickSet {
+ public:
+  struct Brick {
+    std::uint64_t key = 0;
+    std::uint64_t mask = 0;
+    std::uint32_t first = 0;  ///< rank of the brick's first voxel (after Finish)
+  };
+  /// Adds voxel `key` (Finish() needed before Rank/Find).
+  void Add(std::uint64_t key);
+  /// Grows the set by one voxel along `axis` (0..2) upward and/or downward.
+  /// Coordinates must stay in [0, 2^21) (callers shift them).
+  void Dilate(int axis, bool up, bool down);
+  /// Sorts the bricks, computes ranks and the key index.
+  void Finish();
+  const Brick* Find(std::uint64_t brick_key) const {
+    const std::uint32_t i = index_.Find(brick_key);
+    return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
+  }
+  /// Index of voxel `key` in the sorted set, or KeyIndexHash::kNotFound.
+  std::uint32_t Rank(std::uint64_t key) const {
+    const Brick* b = Find(key >> 6);
+    const int bit = static_cast<int>(key & 63);
+    if (b == nullptr || ((b->mask >> bit) & 1) == 0) return KeyIndexHash::kNotFound;
+    return b->first + PopCount(b->mask & ((std::uint64_t{1} << bit) - 1));
+  }
+  const std::vector<Brick>& bricks() const { return bricks_; }
+  std::size_t num_voxels() const { return voxels_; }
+  std::size_t MemoryBytes() const {
+    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes();
+  }
+  static std::uint32_t PopCount(std::uint64_t x) {
+    x -= (x >> 1) & 0x5555555555555555ULL;
+    x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
+    return static_cast<std::uint32_t>((x * 0x0101010101010101ULL) >> 56);
+  }
+
+ private:
+  Brick& At(std::uint64_t brick_key);
+  std::vector<Brick> bricks_;
+  KeyIndexHash index_;
+  std::size_t voxels_ = 0;
+};
+
+}  // namespace detail
+
+/// Narrow-band signed distance field of one mesh over its sparse voxel grid.
+/// Immutable after Build; const queries are thread-safe. Deterministic.
+class NarrowBandSdf {
+ public:
+  NarrowBandSdf() = default;
+
+  /// Builds from the mesh and its voxel grid (Voxelize of this mesh at some
+  /// voxel size s; only the surface voxels are used). Stores, for every voxel
+  /// of the band, the 8 corner signed distances as floats: exact (closest
+  /// triangle over the whole mesh, found through the surface voxels, signed by
+  /// pseudo-normals), plus a hash from voxel Morton key to its block.
+  /// Throws std::invalid_argument for a null mesh, a grid that does not match
+  /// the mesh (triangle index out of range, s <= 0) or a bad option.
+  static NarrowBandSdf Build(std::shared_ptr<const io::TriangleMesh> mesh, const VoxelGrid& grid,
+                             const NarrowBandOptions& options = {});
+
+  /// Trilinear signed distance (mm) at p_F with its gradient in F (the analytic
+  /// derivative of the trilinear interpolant, ~unit). False when p_F's voxel
+  /// is not in the band (outputs untouched).
+  bool Interpolate(const Eigen::Vector3d& p_F, double* distance,
+                   Eigen::Vector3d* gradient = nullptr) const;
+
+  /// Voxel-level answer: the value at the centre of the voxel containing p_F
+  /// (mean of its 8 corners), mm; false outside the band.
+  bool CellValue(const Eigen::Vector3d& p_F, double* distance) const;
+
+  /// Exact signed distance using the triangles of the surface voxels that can
+  /// hold a point within max_distance of p_F (a subset of those within
+  /// ceil(max_distance / s) + 1 voxels), so it is exact whenever |true
+  /// distance| <= max_distance; false if no triangle is within max_distance.
+  bool Exact(const Eigen::Vector3d& p_F, double max_distance, SignedDistanceSample* out) const;
+
+  /// Guarantee: every point within band_mm() = dilation_voxels * s of the
+  /// surface lies in a band voxel (its closest point lies in a surface voxel,
+  /// and a displacement of at most d * s moves the voxel index by at most d
+  /// per axis).
+  double band_mm() const { return band_mm_; }
+  double voxel_size_mm() const { return s_; }
+  std::size_t num_band_voxels() const { return blocks_.size(); }
+  /// Bytes held by this object (the shared mesh is not counted).
+  std::size_t MemoryBytes() const;
+  double build_seconds() const { return build_seconds_; }
+  const PseudoNormals& pseudo_normals() const { return normals_; }
+
+ private:
+  /// A triangle's corners and bounding sphere, stored in spatial (Morton) order
+  /// so that the triangles of neighbouring voxels are close in memory.
+  struct PackedTriangle {
+    Eigen::Vector3d a, b, c;
+    Eigen::Vector3d center;
+    double radius = 0.0;
+  };
+  struct Nearest {
+    std::uint32_t triangle = 0;  ///< internal index (see original_)
+    double squared_distance = 0.0;
+    double distance = 0.0;  ///< sqrt(squared_distance), for culling
+    Eigen::Vector3d closest = Eigen::Vector3d::Zero();
+    Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+    /// Optional per-search marks (build only): triangle t was tested when seen[t] == epoch.
+    std::vector<std::uint32_t>* seen = nullptr;
+    std::uint32_t epoch = 0;
+  };
+
+  void CopyGrid(const VoxelGrid& grid);
+  /// Packs the triangles in spatial order and renumbers the grid's lists.
+  void PackTriangles();
+  detail::BrickSet BandVoxels(const VoxelGrid& grid, int dilation) const;
+  std::vector<float> CornerValues(const detail::BrickSet& corners) const;
+  void FillBlocks(const detail::BrickSet& band);
+  /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
+  /// index or kNoHint) seeds the search. False when none is within.
+  bool FindNearest(const Eigen::Vector3d& p, double bound2, std::uint32_t hint,
+                   Nearest* best) const;
+  void ScanBrick(const Eigen::Vector3d& q, const Eigen::Vector3i& brick,
+                 const detail::BrickSet::Brick& b, const Eigen::Vector3d& p, Nearest* best,
+                 bool* found) const;
+  void TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best, bool* found) const;
+  SignedDistanceSample Sign(const Eigen::Vector3d& p, const Nearest& n) const;
+  /// Block of the band voxel holding p and p's local coordinates in it; null outside.
+  const std::array<float, 8>* Locate(const Eigen::Vector3d& p, Eigen::Vector3d* local) const;
+
+  static constexpr std::uint32_t kNoHint = 0xffffffffu;
+
+  std::shared_ptr<const io::TriangleMesh> mesh_;
+  PseudoNormals normals_;
+  std::vector<PackedTriangle> packed_;   ///< internal (spatial) triangle order
+  std::vector<std::uint32_t> original_;  ///< internal index -> mesh triangle index
+  double s_ = 0.0;
+  double inv_s_ = 0.0;
+  double band_mm_ = 0.0;
+  double build_seconds_ = 0.0;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
+  int shift_ = 0;  ///< band voxel (i,j,k) is keyed by Morton(i+shift, j+shift, k+shift)
+  std::vector<std::uint32_t> tri_offsets_;  ///< CSR, as in VoxelGrid
+  std::vector<std::uint32_t> tri_indices_;
+  detail::BrickSet surface_;                  ///< grid keys; rank = index into the CSR
+  detail::BrickSet band_;                     ///< shifted keys; rank = index into blocks_
+  std::vector<std::array<float, 8>> blocks_;  ///< corner o = x + 2y + 4z, mm
+};
+
+}  // namespace occlude::collision

@@ -1,0 +1,398 @@
+// NarrowBandSdf: exact signed distances at the corners of the voxels around
+// the surface (closest triangle found through 4x4x4 bricks of surface voxels,
+// signed by pseudo-normals), stored as 8 floats per band voxel found through a
+// brick set (hash of 4x4x4 bricks + popcount rank), and trilinear queries with
+// analytic gradients.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "occlude/collision/closest_point.h"
+#include "occlude/collision/morton.h"
+#include "occlude/collision/signed_distance.h"
+
+namespace occlude::collision {
+namespace {
+
+constexpr int kMaxDilation = 16;
+constexpr std::uint64_t kLaneX = 0x1249249249249249ULL;  // Morton bits of x
+constexpr std::uint64_t kLanes[3] = {kLaneX, kLaneX << 1, kLaneX << 2};
+
+/// Morton code of a + b for codes of non-negative coordinates.
+std::uint64_t MortonAdd(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t r = 0;
+  for (const std::uint64_t lane : kLanes) r |= ((a | ~lane) + (b & lane)) & lane;
+  return r;
+}
+
+/// Coordinates (0..3 each) of bit i of a brick's 64-bit Morton-ordered mask.
+Eigen::Vector3i BrickLocal(int i) {
+  return Eigen::Vector3i((i & 1) | ((i >> 2) & 2), ((i >> 1) & 1) | ((i >> 3) & 2),
+                         ((i >> 2) & 1) | ((i >> 4) & 2));
+}
+
+/// Bits of a brick mask whose local coordinate along `axis` is in [lo, hi] (0..3).
+constexpr std::uint64_t LayersMask(int axis, int lo, int hi) {
+  std::uint64_t m = 0;
+  for (int i = 0; i < 64; ++i) {
+    const int local = ((i >> axis) & 1) | (((i >> (axis + 3)) & 1) << 1);
+    if (local >= lo && local <= hi) m |= std::uint64_t{1} << i;
+  }
+  return m;
+}
+
+/// Squared distance, in voxel units, from continuous voxel coordinates q to the
+/// box [lo, hi + 1) of voxel indices.
+double BoxDistance2(const Eigen::Vector3d& q, const Eigen::Vector3i& lo,
+                    const Eigen::Vector3i& hi) {
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double below = lo[a] - q[a];
+    const double above = q[a] - (hi[a] + 1.0);
+    const double gap = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    d2 += gap * gap;
+  }
+  return d2;
+}
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+void CheckInputs(const std::shared_ptr<const io::TriangleMesh>& mesh, const VoxelGrid& grid,
+                 const NarrowBandOptions& options) {
+  if (!mesh) throw std::invalid_argument("NarrowBandSdf::Build: null mesh");
+  if (!(grid.voxel_size_mm > 0.0) || !std::isfinite(grid.voxel_size_mm)) {
+    throw std::invalid_argument("NarrowBandSdf::Build: grid voxel size must be > 0 mm");
+  }
+  if (options.dilation_voxels < 0 || options.dilation_voxels > kMaxDilation) {
+    throw std::invalid_argument("NarrowBandSdf::Build: dilation_voxels must be in [0, " +
+                                std::to_string(kMaxDilation) + "]");
+  }
+  if (grid.triangle_offsets.size() != grid.surface_keys.size() + 1 ||
+      grid.triangle_offsets.back() != grid.triangle_indices.size()) {
+    throw std::invalid_argument("NarrowBandSdf::Build: inconsistent grid CSR arrays");
+  }
+  for (const std::uint32_t t : grid.triangle_indices) {
+    if (t >= mesh->num_triangles()) {
+      throw std::invalid_argument("NarrowBandSdf::Build: grid lists triangle " + std::to_string(t) +
+                                  " but the mesh has " + std::to_string(mesh->num_triangles()) +
+                                  " (grid of another mesh?)");
+    }
+  }
+  const long long span =
+      static_cast<long long>(grid.dims.maxCoeff()) + 2LL * options.dilation_voxels + 3;
+  if (span > kMortonMaxCoord) {
+    throw std::invalid_argument("NarrowBandSdf::Build: grid too large for 21-bit Morton keys");
+  }
+}
+
+}  // namespace
+
+NarrowBandSdf NarrowBandSdf::Build(std::shared_ptr<const io::TriangleMesh> mesh,
+                                   const VoxelGrid& grid, const NarrowBandOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CheckInputs(mesh, grid, options);
+  NarrowBandSdf sdf;
+  sdf.mesh_ = std::move(mesh);
+  sdf.normals_ = PseudoNormals(*sdf.mesh_);
+  sdf.shift_ = options.dilation_voxels + 1;
+  sdf.band_mm_ = options.dilation_voxels * grid.voxel_size_mm;
+  sdf.CopyGrid(grid);
+  sdf.PackTriangles();
+  sdf.FillBlocks(sdf.BandVoxels(grid, options.dilation_voxels));
+  sdf.build_seconds_ = Seconds(start);
+  return sdf;
+}
+
+void NarrowBandSdf::CopyGrid(const VoxelGrid& grid) {
+  s_ = grid.voxel_size_mm;
+  inv_s_ = 1.0 / s_;
+  origin_ = grid.origin_F;
+  dims_ = grid.dims;
+  tri_offsets_ = grid.triangle_offsets;
+  tri_indices_ = grid.triangle_indices;
+  surface_ = detail::BrickSet();
+  for (const std::uint64_t k : grid.surface_keys) surface_.Add(k);
+  surface_.Finish();  // ranks = positions in the sorted surface_keys = CSR rows
+}
+
+void NarrowBandSdf::PackTriangles() {
+  const io::TriangleMesh& m = *mesh_;
+  const std::size_t nt = m.num_triangles();
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Eigen::Vector3d c = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+    const Eigen::Vector3d q = ((c - origin_) * inv_s_).cwiseMax(0.0).cwiseMin(kMortonMaxCoord);
+    order[t] = {MortonEncode(q.cast<int>()), static_cast<std::uint32_t>(t)};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<std::uint32_t> internal(nt);
+  original_.resize(nt);
+  packed_.resize(nt);
+  for (std::size_t i = 0; i < nt; ++i) {
+    const std::uint32_t t = order[i].second;
+    original_[i] = t;
+    internal[t] = static_cast<std::uint32_t>(i);
+    PackedTriangle& pt = packed_[i];
+    pt.a = m.corner(t, 0);
+    pt.b = m.corner(t, 1);
+    pt.c = m.corner(t, 2);
+    pt.center = (pt.a + pt.b + pt.c) / 3.0;
+    const double r2 = std::max({(pt.a - pt.center).squaredNorm(), (pt.b - pt.center).squaredNorm(),
+                                (pt.c - pt.center).squaredNorm()});
+    pt.radius = std::sqrt(r2) * (1.0 + 1e-12);
+  }
+  for (std::uint32_t& t : tri_indices_) t = internal[t];
+}
+
+detail::BrickSet NarrowBandSdf::BandVoxels(const VoxelGrid& grid, int dilation) const {
+  const std::uint64_t shift = MortonEncode(shift_, shift_, shift_);
+  detail::BrickSet band;
+  for (const std::uint64_t k : grid.surface_keys) band.Add(MortonAdd(k, shift));
+  // Separable dilation by [-d, d] along x, then y, then z (a cube of side 2d + 1).
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < dilation; ++i) band.Dilate(axis, true, true);
+  }
+  band.Finish();
+  return band;
+}
+
+std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) const {
+  // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
+  // triangle lies within sqrt(3) (d + 2) s: the search always succeeds.
+  const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
+  std::vector<float> value;
+  value.reserve(corners.num_voxels());
+  std::uint32_t hint = kNoHint;
+  std::vector<std::uint32_t> seen(mesh_->num_triangles(), 0);
+  std::uint32_t epoch = 0;
+  for (const auto& brick : corners.bricks()) {
+    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
+      const std::uint64_t key = brick.key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
+      const Eigen::Vector3i ijk = MortonDecode(key) - Eigen::Vector3i::Constant(shift_);
+      const Eigen::Vector3d p = origin_ + s_ * ijk.cast<double>();
+      Nearest n;
+      n.seen = &seen;
+      n.epoch = ++epoch;
+      if (FindNearest(p, reach * reach, hint, &n)) {
+        value.push_back(static_cast<float>(Sign(p, n).distance));
+        hint = n.triangle;
+      } else {
+        value.push_back(static_cast<float>(reach));  // unreachable for a consistent grid
+      }
+    }
+  }
+  return value;
+}
+
+void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
+  // Corner (i, j, k) of a voxel is stored under the key of voxel (i, j, k):
+  // the corner set is the band grown by one voxel upward along each axis.
+  detail::BrickSet corners = band;
+  for (int axis = 0; axis < 3; ++axis) corners.Dilate(axis, true, false);
+  corners.Finish();
+  const std::vector<float> value = CornerValues(corners);
+  std::uint64_t offset[8];
+  for (int o = 0; o < 8; ++o) offset[o] = MortonEncode(o & 1, (o >> 1) & 1, o >> 2);
+  blocks_.clear();
+  blocks_.reserve(band.num_voxels());
+  for (const auto& brick : band.bricks()) {
+    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
+      const std::uint64_t key = brick.key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
+      std::array<float, 8> block;
+      for (int o = 0; o < 8; ++o)
+        block[static_cast<std::size_t>(o)] = value[corners.Rank(MortonAdd(key, offset[o]))];
+      blocks_.push_back(block);
+    }
+  }
+  band_ = band;
+}
+
+void NarrowBandSdf::TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best,
+                                 bool* found) const {
+  if (best->seen != nullptr) {  // a triangle is listed by every voxel it touches
+    std::uint32_t& mark = (*best->seen)[t];
+    if (mark == best->epoch) return;
+    mark = best->epoch;
+  }
+  const PackedTriangle& pt = packed_[t];
+  const double r = pt.radius + best->distance;
+  if ((p - pt.center).squaredNorm() > r * r) return;
+  const TrianglePoint tp = ClosestPointOnTriangle(p, pt.a, pt.b, pt.c);
+  if (tp.squared_distance < best->squared_distance ||
+      (!*found && tp.squared_distance <= best->squared_distance)) {
+    best->triangle = t;
+    best->squared_distance = tp.squared_distance;
+    best->distance = std::sqrt(tp.squared_distance);
+    best->closest = tp.point;
+    best->barycentric = tp.barycentric;
+    *found = true;
+  }
+}
+
+void NarrowBandSdf::ScanBrick(const Eigen::Vector3d& q, const Eigen::Vector3i& brick,
+                              const detail::BrickSet::Brick& b, const Eigen::Vector3d& p,
+                              Nearest* best, bool* found) const {
+  const double inv_s2 = inv_s_ * inv_s_;
+  // Keep only the voxels of the brick inside the cube of half-side best->distance around p.
+  const double reach = best->distance * inv_s_;
+  std::uint64_t candidates = b.mask;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = std::max(std::floor(q[a] - reach) - 4.0 * brick[a], 0.0);
+    const double hi = std::min(std::floor(q[a] + reach) - 4.0 * brick[a], 3.0);
+    if (!(lo <= hi)) return;
+    candidates &= LayersMask(a, static_cast<int>(lo), static_cast<int>(hi));
+  }
+  for (std::uint64_t m = candidates; m != 0; m &= m - 1) {
+    const int bit = __builtin_ctzll(m);
+    const Eigen::Vector3i v = 4 * brick + BrickLocal(bit);
+    if (BoxDistance2(q, v, v) > best->squared_distance * inv_s2) continue;
+    const std::uint64_t below = (std::uint64_t{1} << bit) - 1;
+    const std::size_t idx = b.first + detail::BrickSet::PopCount(b.mask & below);
+    for (std::uint32_t i = tri_offsets_[idx]; i < tri_offsets_[idx + 1]; ++i) {
+      TestTriangle(tri_indices_[i], p, best, found);
+    }
+  }
+}
+
+bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::uint32_t hint,
+                                Nearest* best) const {
+  bool found = false;
+  best->squared_distance = bound2;
+  best->distance = std::sqrt(bound2);
+  if (hint != kNoHint) TestTriangle(hint, p, best, &found);
+  if (surface_.bricks().empty()) return found;
+  const Eigen::Vector3d q = (p - origin_) * inv_s_;
+  const double reach = std::sqrt(best->squared_distance) * inv_s_;
+  Eigen::Vector3i blo;
+  Eigen::Vector3i bhi;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = std::max(std::floor(q[a] - reach), 0.0);
+    const double hi = std::min(std::floor(q[a] + reach), dims_[a] - 1.0);
+    if (!(lo <= hi)) return found;  // also rejects NaN
+    blo[a] = static_cast<int>(lo) >> 2;
+    bhi[a] = static_cast<int>(hi) >> 2;
+  }
+  // Bricks nearest first (by box distance), so that the bound shrinks early.
+  constexpr int kMaxSorted = 64;
+  std::array<std::pair<double, Eigen::Vector3i>, kMaxSorted> order;
+  const Eigen::Vector3i n = bhi - blo + Eigen::Vector3i::Ones();
+  const bool sorted = n.prod() <= kMaxSorted;
+  int count = 0;
+  const double inv_s2 = inv_s_ * inv_s_;
+  for (int z = blo.z(); z <= bhi.z(); ++z) {
+    for (int y = blo.y(); y <= bhi.y(); ++y) {
+      for (int x = blo.x(); x <= bhi.x(); ++x) {
+        const Eigen::Vector3i brick(x, y, z);
+        const double d2 = BoxDistance2(q, 4 * brick, 4 * brick + Eigen::Vector3i::Constant(3));
+        if (sorted) {
+          order[static_cast<std::size_t>(count++)] = {d2, brick};
+          continue;
+        }
+        if (d2 > best->squared_distance * inv_s2) continue;
+        const auto* b = surface_.Find(MortonEncode(brick));
+        if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
+      }
+    }
+  }
+  if (!sorted) return found;
+  for (int i = 1; i < count; ++i) {  // stable insertion sort: few bricks
+    const auto item = order[static_cast<std::size_t>(i)];
+    int j = i;
+    for (; j > 0 && order[static_cast<std::size_t>(j - 1)].first > item.first; --j) {
+      order[static_cast<std::size_t>(j)] = order[static_cast<std::size_t>(j - 1)];
+    }
+    order[static_cast<std::size_t>(j)] = item;
+  }
+  for (int i = 0; i < count; ++i) {
+    const auto& [d2, brick] = order[static_cast<std::size_t>(i)];
+    if (d2 > best->squared_distance * inv_s2) break;
+    const auto* b = surface_.Find(MortonEncode(brick));
+    if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
+  }
+  return found;
+}
+
+SignedDistanceSample NarrowBandSdf::Sign(const Eigen::Vector3d& p, const Nearest& n) const {
+  SignedDistanceSample out;
+  const std::uint32_t t = original_[n.triangle];
+  const Eigen::Vector3d pseudo = normals_.At(t, n.barycentric);
+  const Eigen::Vector3d diff = p - n.closest;
+  const double sign = diff.dot(pseudo) >= 0.0 ? 1.0 : -1.0;
+  const double dist = std::sqrt(n.squared_distance);
+  out.distance = sign * dist;
+  out.closest = n.closest;
+  out.triangle = t;
+  out.normal = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : pseudo.normalized();
+  return out;
+}
+
+bool NarrowBandSdf::Exact(const Eigen::Vector3d& p_F, double max_distance,
+                          SignedDistanceSample* out) const {
+  if (!mesh_ || !(max_distance >= 0.0)) return false;
+  Nearest n;
+  if (!FindNearest(p_F, max_distance * max_distance, kNoHint, &n)) return false;
+  *out = Sign(p_F, n);
+  return true;
+}
+
+const std::array<float, 8>* NarrowBandSdf::Locate(const Eigen::Vector3d& p,
+                                                  Eigen::Vector3d* local) const {
+  if (blocks_.empty()) return nullptr;
+  const Eigen::Vector3d q = (p - origin_) * inv_s_;
+  const Eigen::Vector3d g(std::floor(q.x()), std::floor(q.y()), std::floor(q.z()));
+  const double lo = -shift_;
+  const double hi = kMortonMaxCoord - shift_;
+  if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
+  const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
+  const std::uint32_t b = band_.Rank(MortonEncode(ijk));
+  if (b == detail::KeyIndexHash::kNotFound) return nullptr;
+  *local = q - g;
+  return &blocks_[b];
+}
+
+bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
+                                Eigen::Vector3d* gradient) const {
+  Eigen::Vector3d f;
+  const std::array<float, 8>* block = Locate(p_F, &f);
+  if (block == nullptr) return false;
+  double c[8];
+  for (int o = 0; o < 8; ++o) c[o] = static_cast<double>((*block)[static_cast<std::size_t>(o)]);
+  const double x = f.x(), y = f.y(), z = f.z();
+  // Along x on the four x-edges (y, z) = (0,0), (1,0), (0,1), (1,1).
+  const double e0 = c[1] - c[0], e1 = c[3] - c[2], e2 = c[5] - c[4], e3 = c[7] - c[6];
+  const double a0 = c[0] + x * e0, a1 = c[2] + x * e1, a2 = c[4] + x * e2, a3 = c[6] + x * e3;
+  const double b0 = a0 + y * (a1 - a0), b1 = a2 + y * (a3 - a2);
+  *distance = b0 + z * (b1 - b0);
+  if (gradient != nullptr) {
+    const double ddx = (1 - z) * ((1 - y) * e0 + y * e1) + z * ((1 - y) * e2 + y * e3);
+    const double ddy = (1 - z) * (a1 - a0) + z * (a3 - a2);
+    const double ddz = b1 - b0;
+    *gradient = Eigen::Vector3d(ddx, ddy, ddz) * inv_s_;
+  }
+  return true;
+}
+
+bool NarrowBandSdf::CellValue(const Eigen::Vector3d& p_F, double* distance) const {
+  Eigen::Vector3d f;
+  const std::array<float, 8>* block = Locate(p_F, &f);
+  if (block == nullptr) return false;
+  double sum = 0.0;
+  for (const float v : *block) sum += static_cast<double>(v);
+  *distance = sum / 8.0;
+  return true;
+}
+
+std::size_t NarrowBandSdf::MemoryBytes() const {
+  return normals_.MemoryBytes() + packed_.capacity() * sizeof(PackedTriangle) +
+         original_.capacity() * sizeof(std::uint32_t) +
+         (tri_offsets_.capacity() + tri_indices_.capacity()) * sizeof(std::uint32_t) +
+         surface_.MemoryBytes() + band_.MemoryBytes() +
+         blocks_.capacity() * sizeof(std::array<float, 8>);
+}
+
+}  // namespace occlude::collision
