@@ -1,0 +1,168 @@
+// The contact and penetration oracle: for a pose X_LU of the upper jaw U in the
+// lower jaw's frame L, how much the jaws touch, how deep they interpenetrate,
+// and where; fast enough for an optimizer's inner loop and a haptic loop.
+//
+// How: the upper surface is sampled (points with area weights, grouped by the
+// upper's surface voxels). The one-sided sphere-tree descent (CollectCells)
+// finds the upper octree cells whose voxels come within reach of the lower's
+// voxels; only the samples of those cells are evaluated, against the lower
+// jaw's signed distance (narrow-band field, or exact triangles). No query
+// touches all samples, voxels or triangles.
+//
+// Sign convention: signed distance d of an upper sample to the lower surface,
+// positive outside the lower jaw (the side its outward normals point to),
+// negative inside (penetration), from surface orientation (pseudo-normals), so
+// open scans work. Contact: 0 <= d <= contact_band_mm. Units mm and mm^2.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "occlude/collision/collide.h"
+#include "occlude/collision/signed_distance.h"
+#include "occlude/collision/sphere_tree.h"
+
+namespace occlude::collision {
+
+enum class AccuracyLevel {
+  kVoxel,     ///< one sample per upper voxel, lower distance at the voxel centre: error ~ voxel size
+  kSubVoxel,  ///< every sample, trilinear narrow-band distance: error ~ 0.01 mm at 0.2 mm voxels
+  kExact,     ///< every sample, exact closest lower triangle with pseudo-normal sign
+};
+const char* ToString(AccuracyLevel level);
+
+/// Anatomical directions of the lower arch in L (for left/right and
+/// anterior/posterior shares). lateral = occlusal x anterior points to the
+/// patient's left.
+struct ArchFrame {
+  Eigen::Vector3d origin_L = Eigen::Vector3d::Zero();
+  Eigen::Vector3d occlusal_L = Eigen::Vector3d::UnitY();  ///< lower -> upper
+  Eigen::Vector3d anterior_L = Eigen::Vector3d::UnitZ();  ///< towards the incisors
+  Eigen::Vector3d lateral_L = Eigen::Vector3d::UnitX();   ///< patient's left
+  double anterior_split_mm = 0.0;  ///< (p - origin).anterior above this = anterior region
+};
+
+/// Estimates the arch frame from the two jaws in a common frame (the bite as
+/// given): occlusal = lower-to-upper centroid direction; lateral = the widest
+/// horizontal direction of the lower arch; anterior = the horizontal direction
+/// where the arch narrows (incisors); the anterior region is the front 35 % of
+/// the arch depth.
+ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L);
+
+struct OracleOptions {
+  double voxel_size_mm = 0.2;     ///< voxel size of both trees and the lower's distance field
+  double sample_spacing_mm = 0.3; ///< upper samples: triangles are split until their edges are below this
+  int sdf_dilation_voxels = 2;    ///< narrow band of the lower's distance field, in voxels
+  int cell_level = 1;             ///< octree level of the upper cells evaluated as a unit
+  int lower_level = 1;            ///< the broad phase descends the lower tree down to this level
+  std::optional<ArchFrame> arch;  ///< default: EstimateArchFrame with U as given
+};
+
+struct OracleRequest {
+  AccuracyLevel level = AccuracyLevel::kSubVoxel;
+  double contact_band_mm = 0.1;         ///< contact: 0 <= d <= band
+  double penetration_search_mm = 0.3;   ///< depths are measured up to here (and to the field's band)
+  bool residuals = false;               ///< fill OracleResult::residuals
+  double residual_band_mm = 0.5;        ///< residuals for samples with d <= this
+  Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< rotation pivot of the gradients, mm in L
+  bool keep_points = true;              ///< fill contacts / penetrations point lists
+};
+
+/// One evaluated upper sample (position in L at the queried pose).
+struct SurfacePoint {
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();
+  double distance_mm = 0.0;   ///< signed distance to the lower surface
+  double area_mm2 = 0.0;      ///< upper surface area the sample stands for
+  std::int32_t part = 0;      ///< upper part index (tooth) of the sample
+};
+
+/// Totals per upper part (tooth when the jaw came in parts).
+struct PartTotals {
+  std::int32_t part = 0;
+  int tooth_number = 0;
+  double contact_area_mm2 = 0.0;
+  std::size_t contact_samples = 0;
+  double penetration_area_mm2 = 0.0;
+  double max_penetration_mm = 0.0;
+};
+
+/// Residual for least squares: d and its derivative with respect to the pose
+/// update X_LU' = [pivot + Exp(w) (X_LU p - pivot) + t]: columns 0-2 = d/dt
+/// (per mm), 3-5 = d/dw (per radian, rotation vector in L about pivot_L).
+struct DistanceResidual {
+  double distance_mm = 0.0;
+  Eigen::Matrix<double, 1, 6> gradient = Eigen::Matrix<double, 1, 6>::Zero();
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();
+  double area_mm2 = 0.0;
+};
+
+struct OracleResult {
+  AccuracyLevel level = AccuracyLevel::kSubVoxel;  ///< the level actually used
+  // Penetration (d < 0).
+  double max_penetration_mm = 0.0;       ///< deepest measured depth (>= 0)
+  double penetration_area_mm2 = 0.0;
+  Eigen::Vector3d deepest_p_L = Eigen::Vector3d::Zero();
+  std::size_t deep_samples = 0;  ///< samples inside the lower beyond the measured depth range
+  // Contact (0 <= d <= band).
+  double contact_area_mm2 = 0.0;
+  std::size_t contact_samples = 0;
+  double min_distance_mm = 0.0;  ///< smallest signed distance among evaluated samples (+inf if none)
+  double left_share = 0.0, right_share = 0.0;          ///< of contact area
+  double anterior_share = 0.0, posterior_share = 0.0;  ///< of contact area
+  std::vector<PartTotals> parts;             ///< one entry per upper part
+  std::vector<SurfacePoint> contacts;        ///< contact samples (if keep_points)
+  std::vector<SurfacePoint> penetrations;    ///< penetrating samples (if keep_points)
+  std::vector<DistanceResidual> residuals;   ///< if requested
+  // Work done.
+  std::size_t cells = 0;
+  std::size_t samples_evaluated = 0;
+  std::size_t node_tests = 0;
+};
+
+/// The oracle for one jaw pair: both sphere trees, the lower's distance field
+/// and the upper's samples, built once; Query() is const and thread-safe.
+class JawOracle {
+ public:
+  JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+            std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options = {});
+
+  void Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request, OracleResult* result) const;
+
+  const SphereTree& lower_tree() const { return lower_; }
+  const SphereTree& upper_tree() const { return upper_; }
+  const NarrowBandSdf& lower_sdf() const { return sdf_; }
+  const ArchFrame& arch() const { return arch_; }
+  std::size_t num_samples() const { return sample_area_.size(); }
+  double build_seconds() const { return build_seconds_; }
+  std::size_t MemoryBytes() const;
+
+ private:
+  void EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU, const OracleRequest& request,
+                    OracleResult* result) const;
+  void EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+                     const OracleRequest& request, OracleResult* result) const;
+
+  OracleOptions options_;
+  SphereTree lower_, upper_;
+  NarrowBandSdf sdf_;
+  ArchFrame arch_;
+  // Upper samples in U, grouped by upper surface voxel (CSR, voxel order).
+  std::vector<Eigen::Vector3f> sample_p_U_;
+  std::vector<float> sample_area_;
+  std::vector<std::int32_t> sample_part_;
+  std::vector<std::uint32_t> voxel_sample_begin_;  ///< size = upper voxels + 1
+  // Per upper voxel: area-weighted centroid and total area (the voxel level).
+  std::vector<Eigen::Vector3f> voxel_centroid_U_;
+  std::vector<float> voxel_area_;
+  std::vector<std::int32_t> voxel_part_;
+  // Per upper octree node: its leaf range [first, last) (voxel indices).
+  std::vector<std::uint32_t> node_leaf_begin_, node_leaf_end_;
+  std::vector<bool> part_is_anterior_tooth_;  ///< known from tooth numbers
+  std::vector<bool> part_has_tooth_;
+  double build_seconds_ = 0.0;
+};
+
+}  // namespace occlude::collision

@@ -1,0 +1,206 @@
+// JawOracle construction: both sphere trees, the lower jaw's narrow-band
+// distance field, the upper's area-weighted surface samples grouped by voxel,
+// and the arch frame.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "occlude/collision/morton.h"
+#include "occlude/collision/oracle.h"
+
+namespace occlude::collision {
+namespace {
+
+Eigen::Vector3d Centroid(const io::TriangleMesh& m) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& v : m.vertices) c += v;
+  return m.vertices.empty() ? c : Eigen::Vector3d(c / static_cast<double>(m.vertices.size()));
+}
+
+// Index of the surface voxel containing p (a point on triangle t), or -1.
+long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint32_t t) {
+  const Eigen::Vector3i base = grid.VoxelOf(p);
+  for (int n = 0; n < 27; ++n) {  // own voxel first, then neighbours (rounding at faces)
+    const int k = n == 0 ? 13 : (n <= 13 ? n - 1 : n);
+    const Eigen::Vector3i v = base + Eigen::Vector3i(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
+    if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) continue;
+    const auto it = std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), MortonEncode(v));
+    if (it == grid.surface_keys.end() || *it != MortonEncode(v)) continue;
+    const auto idx = static_cast<std::size_t>(it - grid.surface_keys.begin());
+    for (auto i = grid.triangles_begin(idx); i < grid.triangles_end(idx); ++i) {
+      if (grid.triangle_indices[i] == t) return static_cast<long>(idx);
+    }
+  }
+  return -1;
+}
+
+struct RawSample {
+  Eigen::Vector3d p;
+  double area;
+  std::uint32_t triangle;
+};
+
+// Splits triangle t into k^2 congruent pieces (k from the spacing) and returns
+// their centroids, each standing for area/k^2.
+void SampleTriangle(const io::TriangleMesh& m, std::uint32_t t, double spacing,
+                    std::vector<RawSample>* out) {
+  const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+  const double area = 0.5 * (b - a).cross(c - a).norm() / (k * k);
+  const Eigen::Vector3d u = (b - a) / k, v = (c - a) / k;
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; i + j < k; ++j) {
+      const Eigen::Vector3d o = a + i * u + j * v;
+      out->push_back({o + (u + v) / 3.0, area, t});
+      if (i + j < k - 1) out->push_back({o + 2.0 * (u + v) / 3.0, area, t});
+    }
+  }
+}
+
+}  // namespace
+
+const char* ToString(AccuracyLevel level) {
+  switch (level) {
+    case AccuracyLevel::kVoxel: return "voxel";
+    case AccuracyLevel::kSubVoxel: return "subvoxel";
+    case AccuracyLevel::kExact: return "exact";
+  }
+  return "?";
+}
+
+ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L) {
+  ArchFrame f;
+  f.origin_L = Centroid(lower_L);
+  const Eigen::Vector3d up = Centroid(upper_L) - f.origin_L;
+  f.occlusal_L = up.norm() > 0 ? Eigen::Vector3d(up.normalized()) : Eigen::Vector3d::UnitY();
+  // Horizontal covariance of the lower arch.
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - f.occlusal_L * f.occlusal_L.transpose();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& v : lower_L.vertices) {
+    const Eigen::Vector3d h = P * (v - f.origin_L);
+    cov += h * h.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d widest = eig.eigenvectors().col(2);
+  Eigen::Vector3d depth = f.occlusal_L.cross(widest).normalized();
+  // The incisors are where the arch is narrow: compare the spread across the
+  // arch in the two halves along `depth`.
+  double spread[2] = {0, 0}, count[2] = {0, 0};
+  double lo = 0, hi = 0;
+  for (const auto& v : lower_L.vertices) {
+    const double a = (v - f.origin_L).dot(depth);
+    const int half = a > 0 ? 1 : 0;
+    spread[half] += std::abs((v - f.origin_L).dot(widest));
+    count[half] += 1;
+    lo = std::min(lo, a);
+    hi = std::max(hi, a);
+  }
+  const bool flip = count[0] > 0 && count[1] > 0 && spread[1] / count[1] > spread[0] / count[0];
+  if (flip) {
+    depth = -depth;
+    std::swap(lo, hi);
+    lo = -lo;
+    hi = -hi;
+  }
+  f.anterior_L = depth;
+  f.lateral_L = f.occlusal_L.cross(f.anterior_L).normalized();
+  f.anterior_split_mm = hi - 0.35 * (hi - lo);
+  return f;
+}
+
+JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+                     std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options)
+    : options_(options) {
+  const auto start = std::chrono::steady_clock::now();
+  SphereTreeOptions tree_options;
+  tree_options.voxelize.voxel_size_mm = options.voxel_size_mm;
+  lower_ = SphereTree::Build(lower_L, tree_options);
+  upper_ = SphereTree::Build(upper_U, tree_options);
+  NarrowBandOptions sdf_options;
+  sdf_options.dilation_voxels = options.sdf_dilation_voxels;
+  sdf_ = NarrowBandSdf::Build(lower_L, lower_.grid(), sdf_options);
+  arch_ = options.arch ? *options.arch : EstimateArchFrame(*lower_L, *upper_U);
+
+  // Samples of the upper surface, grouped by voxel (counting sort).
+  const io::TriangleMesh& up = *upper_U;
+  const VoxelGrid& grid = upper_.grid();
+  const double spacing = options.sample_spacing_mm > 0 ? options.sample_spacing_mm : 0.3;
+  std::vector<RawSample> raw;
+  std::vector<long> voxel_of;
+  for (std::uint32_t t = 0; t < up.num_triangles(); ++t) {
+    const std::size_t first = raw.size();
+    SampleTriangle(up, t, spacing, &raw);
+    for (std::size_t i = first; i < raw.size(); ++i) voxel_of.push_back(FindSampleVoxel(grid, raw[i].p, t));
+  }
+  const std::size_t nv = grid.num_surface();
+  voxel_sample_begin_.assign(nv + 1, 0);
+  for (const long v : voxel_of) {
+    if (v >= 0) ++voxel_sample_begin_[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) voxel_sample_begin_[v + 1] += voxel_sample_begin_[v];
+  const std::size_t ns = voxel_sample_begin_[nv];
+  sample_p_U_.resize(ns);
+  sample_area_.resize(ns);
+  sample_part_.resize(ns);
+  std::vector<std::uint32_t> fill(voxel_sample_begin_.begin(), voxel_sample_begin_.end() - 1);
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (voxel_of[i] < 0) continue;
+    const std::uint32_t slot = fill[static_cast<std::size_t>(voxel_of[i])]++;
+    sample_p_U_[slot] = raw[i].p.cast<float>();
+    sample_area_[slot] = static_cast<float>(raw[i].area);
+    sample_part_[slot] = up.triangle_part.empty() ? 0 : up.triangle_part[raw[i].triangle];
+  }
+  // Voxel-level samples: area-weighted centroid and the dominant part.
+  voxel_centroid_U_.resize(nv);
+  voxel_area_.resize(nv);
+  voxel_part_.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    double area = 0.0;
+    for (auto i = voxel_sample_begin_[v]; i < voxel_sample_begin_[v + 1]; ++i) {
+      c += static_cast<double>(sample_area_[i]) * sample_p_U_[i].cast<double>();
+      area += static_cast<double>(sample_area_[i]);
+    }
+    voxel_centroid_U_[v] = (area > 0 ? Eigen::Vector3d(c / area) : upper_.grid().VoxelCenter(
+                                                                     MortonDecode(grid.surface_keys[v])))
+                               .cast<float>();
+    voxel_area_[v] = static_cast<float>(area);
+    voxel_part_[v] = voxel_sample_begin_[v] < voxel_sample_begin_[v + 1] ? sample_part_[voxel_sample_begin_[v]] : 0;
+  }
+  // Leaf ranges per upper octree node (children are contiguous, in order).
+  const Octree& oct = upper_.octree();
+  node_leaf_begin_.assign(oct.num_nodes(), 0);
+  node_leaf_end_.assign(oct.num_nodes(), 0);
+  for (std::size_t n = oct.num_nodes(); n-- > 0;) {
+    if (n >= oct.leaf_begin()) {
+      node_leaf_begin_[n] = static_cast<std::uint32_t>(n - oct.leaf_begin());
+      node_leaf_end_[n] = node_leaf_begin_[n] + 1;
+    } else {
+      const std::uint32_t first = oct.first_child[n];
+      const auto count = static_cast<std::uint32_t>(__builtin_popcount(oct.child_mask[n]));
+      node_leaf_begin_[n] = node_leaf_begin_[first];
+      node_leaf_end_[n] = node_leaf_end_[first + count - 1];
+    }
+  }
+  // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
+  for (const auto& part : up.parts) {
+    const int t = part.tooth_number;
+    part_has_tooth_.push_back(t > 0);
+    part_is_anterior_tooth_.push_back((t >= 6 && t <= 11) || (t >= 22 && t <= 27));
+  }
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::size_t JawOracle::MemoryBytes() const {
+  return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
+         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_area_.capacity() * sizeof(float) +
+         sample_part_.capacity() * sizeof(std::int32_t) +
+         voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
+         voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +
+         (voxel_area_.capacity() + voxel_part_.capacity()) * 4 +
+         (node_leaf_begin_.capacity() + node_leaf_end_.capacity()) * sizeof(std::uint32_t);
+}
+
+}  // namespace occlude::collision

@@ -1,0 +1,167 @@
+// JawOracle::Query: broad phase (CollectCells on the two sphere trees), then
+// the samples of each reported upper cell against the lower's signed distance,
+// at the requested accuracy level, accumulated into contact, penetration,
+// per-part and regional totals and least-squares residuals.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "occlude/collision/oracle.h"
+#include "occlude/collision/sphere_table.h"
+
+namespace occlude::collision {
+namespace {
+
+void CheckRequest(const OracleRequest& r) {
+  auto bad = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
+  if (bad(r.contact_band_mm)) throw std::invalid_argument("OracleRequest.contact_band_mm must be finite and >= 0");
+  if (bad(r.penetration_search_mm)) {
+    throw std::invalid_argument("OracleRequest.penetration_search_mm must be finite and >= 0");
+  }
+  if (r.residuals && bad(r.residual_band_mm)) {
+    throw std::invalid_argument("OracleRequest.residual_band_mm must be finite and >= 0");
+  }
+  if (!r.pivot_L.allFinite()) throw std::invalid_argument("OracleRequest.pivot_L must be finite");
+}
+
+void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
+  const std::vector<PartTotals> no_parts;
+  r->level = level;
+  r->max_penetration_mm = r->penetration_area_mm2 = 0.0;
+  r->deepest_p_L.setZero();
+  r->deep_samples = 0;
+  r->contact_area_mm2 = 0.0;
+  r->contact_samples = 0;
+  r->min_distance_mm = std::numeric_limits<double>::infinity();
+  r->left_share = r->right_share = r->anterior_share = r->posterior_share = 0.0;
+  r->parts.assign(num_parts, PartTotals{});
+  r->contacts.clear();
+  r->penetrations.clear();
+  r->residuals.clear();
+  r->cells = r->samples_evaluated = r->node_tests = 0;
+}
+
+}  // namespace
+
+void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+                              const OracleRequest& request, OracleResult* result) const {
+  ++result->samples_evaluated;
+  double d = 0.0;
+  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
+  bool known = false;
+  switch (request.level) {
+    case AccuracyLevel::kVoxel: known = sdf_.CellValue(p_L, &d); break;
+    case AccuracyLevel::kSubVoxel: known = sdf_.Interpolate(p_L, &d, &grad); break;
+    case AccuracyLevel::kExact: {
+      SignedDistanceSample s;
+      const double reach = std::max({request.contact_band_mm, request.penetration_search_mm,
+                                     request.residuals ? request.residual_band_mm : 0.0});
+      known = sdf_.Exact(p_L, reach, &s);
+      d = s.distance;
+      grad = s.normal;
+      break;
+    }
+  }
+  if (!known) {
+    // Outside the measured range: deep inside the lower jaw, or simply far away.
+    const VoxelGrid& g = lower_.grid();
+    if (g.Classify(g.VoxelOf(p_L)) == VoxelClass::kInterior) ++result->deep_samples;
+    return;
+  }
+  result->min_distance_mm = std::min(result->min_distance_mm, d);
+  PartTotals& pt = result->parts[static_cast<std::size_t>(part)];
+  if (d < 0.0 && -d <= request.penetration_search_mm + sdf_.band_mm()) {
+    result->penetration_area_mm2 += area;
+    pt.penetration_area_mm2 += area;
+    pt.max_penetration_mm = std::max(pt.max_penetration_mm, -d);
+    if (-d > result->max_penetration_mm) {
+      result->max_penetration_mm = -d;
+      result->deepest_p_L = p_L;
+    }
+    if (request.keep_points) result->penetrations.push_back({p_L, d, area, part});
+  } else if (d >= 0.0 && d <= request.contact_band_mm) {
+    result->contact_area_mm2 += area;
+    ++result->contact_samples;
+    pt.contact_area_mm2 += area;
+    ++pt.contact_samples;
+    const Eigen::Vector3d rel = p_L - arch_.origin_L;
+    (rel.dot(arch_.lateral_L) >= 0.0 ? result->left_share : result->right_share) += area;
+    const bool anterior = part_has_tooth_[static_cast<std::size_t>(part)]
+                              ? part_is_anterior_tooth_[static_cast<std::size_t>(part)]
+                              : rel.dot(arch_.anterior_L) > arch_.anterior_split_mm;
+    (anterior ? result->anterior_share : result->posterior_share) += area;
+    if (request.keep_points) result->contacts.push_back({p_L, d, area, part});
+  }
+  if (request.residuals && d <= request.residual_band_mm) {
+    DistanceResidual r;
+    r.distance_mm = d;
+    r.p_L = p_L;
+    r.area_mm2 = area;
+    const Eigen::Vector3d n = grad.norm() > 0 ? Eigen::Vector3d(grad.normalized()) : grad;
+    r.gradient.head<3>() = n.transpose();
+    r.gradient.tail<3>() = (p_L - request.pivot_L).cross(n).transpose();
+    result->residuals.push_back(r);
+  }
+}
+
+void JawOracle::EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU,
+                             const OracleRequest& request, OracleResult* result) const {
+  const std::uint32_t first = node_leaf_begin_[node], last = node_leaf_end_[node];
+  if (request.level == AccuracyLevel::kVoxel) {
+    for (std::uint32_t v = first; v < last; ++v) {
+      if (voxel_area_[v] <= 0.0f) continue;
+      EvaluatePoint(X_LU * voxel_centroid_U_[v].cast<double>(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
+                    result);
+    }
+    return;
+  }
+  for (auto i = voxel_sample_begin_[first]; i < voxel_sample_begin_[last]; ++i) {
+    EvaluatePoint(X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]), sample_part_[i], request,
+                  result);
+  }
+}
+
+void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request,
+                      OracleResult* result) const {
+  CheckRequest(request);
+  Reset(result, request.level, upper_.mesh().parts.size() == 0 ? 1 : upper_.mesh().parts.size());
+  for (std::size_t p = 0; p < result->parts.size(); ++p) {
+    result->parts[p].part = static_cast<std::int32_t>(p);
+    result->parts[p].tooth_number = p < upper_.mesh().parts.size() ? upper_.mesh().parts[p].tooth_number : 0;
+  }
+  CellRequest cells;
+  cells.cell_level = options_.cell_level;
+  cells.a_level = options_.lower_level;
+  // A sample within `reach` of the lower surface lies in a reported cell.
+  cells.reach_mm = std::max({request.contact_band_mm, request.penetration_search_mm,
+                             request.residuals ? request.residual_band_mm : 0.0});
+  thread_local CellResult found;
+  CollectCells(lower_, upper_, X_LU, cells, &found);
+  result->cells = found.cells_b.size();
+  result->node_tests = found.node_tests;
+  // A cell whose centre is known to be farther from the lower surface than its
+  // radius plus the reach holds no sample of interest.
+  const double cell_radius = kCubeCircumradius * upper_.edge(options_.cell_level);
+  for (const std::uint32_t node : found.cells_b) {
+    const int level = std::min(options_.cell_level, upper_.octree().top_level);
+    double d = 0.0;
+    if (sdf_.Interpolate(X_LU * upper_.CubeCenter(node, level), &d) &&
+        d > cell_radius + cells.reach_mm) {
+      continue;
+    }
+    EvaluateCell(node, X_LU, request, result);
+  }
+
+  const double lr = result->left_share + result->right_share;
+  const double ap = result->anterior_share + result->posterior_share;
+  if (lr > 0) {
+    result->left_share /= lr;
+    result->right_share /= lr;
+  }
+  if (ap > 0) {
+    result->anterior_share /= ap;
+    result->posterior_share /= ap;
+  }
+}
+
+}  // namespace occlude::collision

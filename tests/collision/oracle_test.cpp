@@ -1,0 +1,204 @@
+// The contact and penetration oracle on analytic scenes: a block resting on a
+// slab (contact area, penetration depth and area, minimum distance), agreement
+// between accuracy levels, residual gradients against finite differences, and
+// robustness (far apart, nested, no NaN).
+#include "occlude/collision/oracle.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "test_common.h"
+
+namespace occlude::collision {
+namespace {
+
+using io::TriangleMesh;
+
+// Lower: a slab whose top face is y = 0. Upper: a 4 x 4 mm block whose bottom
+// face is y = 0 in U. With X_LU = translation (0, g, 0) the gap is g.
+class OracleBlockTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    auto lower = std::make_shared<TriangleMesh>(test::MakeBox({-6, -3, -6}, {6, 0, 6}));
+    auto upper = std::make_shared<TriangleMesh>(test::MakeBox({-2, 0, -2}, {2, 4, 2}));
+    OracleOptions options;
+    options.voxel_size_mm = 0.2;
+    options.sample_spacing_mm = 0.25;
+    oracle_ = std::make_unique<JawOracle>(lower, upper, options);
+  }
+  static void TearDownTestSuite() { oracle_.reset(); }
+  static Eigen::Isometry3d Gap(double g) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation().y() = g;
+    return X;
+  }
+  static std::unique_ptr<JawOracle> oracle_;
+};
+std::unique_ptr<JawOracle> OracleBlockTest::oracle_;
+
+constexpr double kBottomArea = 16.0;  // mm^2
+// Side-face samples within the band add at most band * perimeter.
+constexpr double kSideStrip = 0.1 * 16.0;
+
+TEST_F(OracleBlockTest, ContactAreaIsTheBottomFaceWithinTheBand) {
+  for (AccuracyLevel level : {AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
+    OracleRequest req;
+    req.level = level;
+    OracleResult res;
+    oracle_->Query(Gap(0.05), req, &res);
+    EXPECT_EQ(res.level, level);
+    EXPECT_GE(res.contact_area_mm2, kBottomArea - 1e-6) << ToString(level);
+    EXPECT_LE(res.contact_area_mm2, kBottomArea + kSideStrip) << ToString(level);
+    EXPECT_EQ(res.max_penetration_mm, 0.0) << ToString(level);
+    EXPECT_NEAR(res.min_distance_mm, 0.05, level == AccuracyLevel::kExact ? 1e-9 : 0.01);
+    EXPECT_NEAR(res.left_share + res.right_share, 1.0, 1e-12);
+    EXPECT_NEAR(res.anterior_share + res.posterior_share, 1.0, 1e-12);
+  }
+}
+
+TEST_F(OracleBlockTest, PenetrationDepthAndArea) {
+  OracleRequest req;
+  req.level = AccuracyLevel::kExact;
+  OracleResult res;
+  oracle_->Query(Gap(-0.08), req, &res);
+  EXPECT_NEAR(res.max_penetration_mm, 0.08, 1e-9);
+  EXPECT_GE(res.penetration_area_mm2, kBottomArea - 1e-6);
+  // Side samples stand for pieces up to one spacing tall: the strip is quantized.
+  EXPECT_LE(res.penetration_area_mm2, kBottomArea + (0.08 + 0.25) * 16.0);
+  EXPECT_NEAR(res.deepest_p_L.y(), -0.08, 1e-9);
+  req.level = AccuracyLevel::kSubVoxel;
+  oracle_->Query(Gap(-0.08), req, &res);
+  EXPECT_NEAR(res.max_penetration_mm, 0.08, 0.01);
+}
+
+TEST_F(OracleBlockTest, FarApartHasNothingAndTouchesNothing) {
+  OracleRequest req;
+  OracleResult res;
+  oracle_->Query(Gap(3.0), req, &res);
+  EXPECT_EQ(res.contact_area_mm2, 0.0);
+  EXPECT_EQ(res.max_penetration_mm, 0.0);
+  EXPECT_EQ(res.samples_evaluated, 0u);  // the broad phase found no cell
+  EXPECT_TRUE(std::isinf(res.min_distance_mm));
+}
+
+TEST_F(OracleBlockTest, VoxelLevelIsWithinAVoxel) {
+  OracleRequest req;
+  req.level = AccuracyLevel::kVoxel;
+  OracleResult res;
+  oracle_->Query(Gap(0.05), req, &res);
+  // One sample per voxel, lower distance at voxel centres: within a voxel diagonal.
+  EXPECT_NEAR(res.min_distance_mm, 0.05, 0.2 * std::sqrt(3.0));
+  EXPECT_GT(res.samples_evaluated, 0u);
+}
+
+TEST_F(OracleBlockTest, ResidualGradientsMatchFiniteDifferences) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  OracleRequest req;
+  req.level = AccuracyLevel::kExact;
+  req.residuals = true;
+  req.keep_points = false;
+  req.pivot_L = Eigen::Vector3d(0.5, 2.0, -0.3);
+  Eigen::Isometry3d X = Gap(0.2);
+  X.linear() = Eigen::AngleAxisd(0.02, Eigen::Vector3d(1, 0, 1).normalized()).toRotationMatrix();
+  OracleResult res;
+  oracle_->Query(X, req, &res);
+  ASSERT_GT(res.residuals.size(), 20u);
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    // Apply the k-th unit update (t in mm, w in rad about the pivot) to each residual's point.
+    Eigen::Matrix<double, 6, 1> step = Eigen::Matrix<double, 6, 1>::Zero();
+    step[k] = h;
+    const Eigen::Matrix3d Rw =
+        Eigen::AngleAxisd(step.tail<3>().norm(), step.tail<3>().norm() > 0 ? step.tail<3>().normalized()
+                                                                           : Eigen::Vector3d::UnitX())
+            .toRotationMatrix();
+    for (std::size_t i = 0; i < res.residuals.size(); i += 7) {
+      const DistanceResidual& r = res.residuals[i];
+      const Eigen::Vector3d moved = req.pivot_L + Rw * (r.p_L - req.pivot_L) + step.head<3>();
+      // The lower's top face is y = 0 near the block: d = y exactly there.
+      if (std::abs(r.p_L.x()) > 1.9 || std::abs(r.p_L.z()) > 1.9 || r.p_L.y() > 0.5) continue;
+      const double fd = (moved.y() - r.p_L.y()) / h;
+      EXPECT_NEAR(r.gradient[k], fd, 1e-5) << "component " << k;
+    }
+  }
+}
+
+TEST(OracleRobustnessTest, NestedFarAndRotatedPosesNeverGiveNaN) {
+  auto lower = std::make_shared<TriangleMesh>(test::MakeSphere({0, 0, 0}, 3.0, 12, 16));
+  auto upper = std::make_shared<TriangleMesh>(test::MakeSphere({0, 0, 0}, 1.0, 8, 12));
+  OracleOptions options;
+  options.voxel_size_mm = 0.25;
+  const JawOracle oracle(lower, upper, options);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 40; ++i) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = Eigen::AngleAxisd(3.1 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+                     .toRotationMatrix();
+    X.translation() = (i % 4 == 0 ? 0.0 : 6.0) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    for (AccuracyLevel level : {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
+      OracleRequest req;
+      req.level = level;
+      req.residuals = true;
+      OracleResult res;
+      oracle.Query(X, req, &res);
+      ASSERT_TRUE(std::isfinite(res.contact_area_mm2));
+      ASSERT_TRUE(std::isfinite(res.max_penetration_mm));
+      ASSERT_TRUE(std::isfinite(res.penetration_area_mm2));
+      for (const auto& r : res.residuals) ASSERT_TRUE(r.gradient.allFinite());
+    }
+  }
+}
+
+TEST(OracleValidationTest, RejectsBadRequests) {
+  auto box = std::make_shared<TriangleMesh>(test::MakeBox({0, 0, 0}, {1, 1, 1}));
+  const JawOracle oracle(box, box, OracleOptions{});
+  OracleResult res;
+  OracleRequest req;
+  req.contact_band_mm = -0.1;
+  EXPECT_THROW(oracle.Query(Eigen::Isometry3d::Identity(), req, &res), std::invalid_argument);
+  req.contact_band_mm = std::nan("");
+  EXPECT_THROW(oracle.Query(Eigen::Isometry3d::Identity(), req, &res), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace occlude::collision
+
+#include "occlude/io/synthetic_jaws.h"
+
+namespace occlude::collision {
+namespace {
+
+TEST(OracleSyntheticTest, GroundTruthBiteTouchesOnBothSidesWithoutPenetration) {
+  io::SyntheticJawOptions o;
+  o.triangles_per_jaw = 5000;
+  const io::SyntheticJawPair jaws = io::MakeSyntheticJawPair(o);
+  OracleOptions options;
+  options.voxel_size_mm = 0.3;  // coarse enough to keep the sanitizer lane fast
+  const auto lower = std::make_shared<io::TriangleMesh>(jaws.lower_L);
+  const auto upper = std::make_shared<io::TriangleMesh>(jaws.upper_U);
+  options.arch = EstimateArchFrame(jaws.lower_L, jaws.upper_U.Transformed(jaws.X_LU));
+  const JawOracle oracle(lower, upper, options);
+  OracleRequest req;
+  req.level = AccuracyLevel::kExact;
+  OracleResult res;
+  oracle.Query(jaws.X_LU, req, &res);
+  EXPECT_LE(res.max_penetration_mm, 0.011);  // the generator's contract, 0.01 mm
+  EXPECT_GT(res.contact_area_mm2, 1.0);
+  EXPECT_GT(res.left_share, 0.2);
+  EXPECT_GT(res.right_share, 0.2);
+  EXPECT_GT(res.posterior_share, 0.5);
+  // Pushed 0.2 mm into the bite it interpenetrates by at least 0.15 mm.
+  oracle.Query(Eigen::Translation3d(-0.2 * jaws.occlusal_axis_L) * jaws.X_LU, req, &res);
+  EXPECT_GE(res.max_penetration_mm, 0.15);
+  // Opened 0.5 mm: nothing within the 0.1 mm band.
+  oracle.Query(Eigen::Translation3d(0.5 * jaws.occlusal_axis_L) * jaws.X_LU, req, &res);
+  EXPECT_EQ(res.contact_area_mm2, 0.0);
+  EXPECT_EQ(res.max_penetration_mm, 0.0);
+}
+
+}  // namespace
+}  // namespace occlude::collision
