@@ -114,7 +114,7 @@ void RunCollide(const CollideArgs& args) {
   std::ostringstream table;
   table << "Sweep along " << args.axis << " from the given pose (offset > 0 = open); voxel "
         << args.voxel_mm << " mm, delta " << args.delta_mm << " mm; median of " << args.reps
-        << " runs, one thread; times in microseconds\n"
+        << " runs, one thread; thread CPU time in microseconds\n"
         << SweepTable(rows);
   std::cout << table.str();
   if (!args.out.empty()) {
