@@ -10,7 +10,9 @@
 // the positive side), the overlap reduces to the signs of two orientation
 // determinants (the interval test of Guigue and Devillers, derived here from the
 // ordering of the four segment ends on the line). Coplanar pairs get a 2D test
-// in the projection that drops the normal's dominant axis.
+// in the projection that drops the normal's dominant axis; there a zero 2D
+// orientation counts as contact only together with an exact extent check, since
+// nearly collinear edges far apart get orientations that round to zero.
 //
 // Rounding policy. Decisions are signs of determinants of the input coordinates,
 // with no division and no normalisation, so the answer is exact up to rounding;
@@ -356,17 +358,33 @@ double Orient2(const P2& a, const P2& b, const P2& c) {
 
 int Sign(double x) { return (x > 0.0) - (x < 0.0); }
 
-/// Closed segments [p, q] and [r, s]; either may be a point.
+/// True when c lies in the axis-aligned box of [a, b] (exact comparisons).
+/// Given that c is on the line through a and b, this is "c on the segment".
+bool InBox(const P2& a, const P2& b, const P2& c) {
+  return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
+         c.y <= std::max(a.y, b.y);
+}
+
+/// Closed segments [p, q] and [r, s]; either may be a point. They meet iff they
+/// cross strictly (each one's ends on opposite strict sides of the other's line)
+/// or an end of one lies on the other. An orientation that is zero only says
+/// that the end is on the other's line (up to rounding: nearly collinear
+/// segments get orientations that round to zero or to either sign), so it counts
+/// only with the end inside the other segment's extent (collinear segments, all
+/// four zero, meet iff an end of one lies in the other); and segments whose
+/// boxes are disjoint never meet, whatever the rounded signs.
 bool Segments2DIntersect(const P2& p, const P2& q, const P2& r, const P2& s) {
+  if (std::max(p.x, q.x) < std::min(r.x, s.x) || std::max(r.x, s.x) < std::min(p.x, q.x) ||
+      std::max(p.y, q.y) < std::min(r.y, s.y) || std::max(r.y, s.y) < std::min(p.y, q.y)) {
+    return false;
+  }
   const int o1 = Sign(Orient2(p, q, r));
   const int o2 = Sign(Orient2(p, q, s));
   const int o3 = Sign(Orient2(r, s, p));
   const int o4 = Sign(Orient2(r, s, q));
-  if (o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0) {  // collinear: compare extents
-    return std::max(p.x, q.x) >= std::min(r.x, s.x) && std::max(r.x, s.x) >= std::min(p.x, q.x) &&
-           std::max(p.y, q.y) >= std::min(r.y, s.y) && std::max(r.y, s.y) >= std::min(p.y, q.y);
-  }
-  return o1 * o2 <= 0 && o3 * o4 <= 0;
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && InBox(p, q, r)) || (o2 == 0 && InBox(p, q, s)) ||
+         (o3 == 0 && InBox(r, s, p)) || (o4 == 0 && InBox(r, s, q));
 }
 
 /// p in the closed triangle t; t must have non-zero area.

@@ -1,7 +1,8 @@
 // TrianglesIntersect, TriangleTriangleDistance and TrianglesWithin against
 // analytic answers, exactly representable touching configurations (under every
 // corner order), symmetry, rigid-motion invariance, an independent edge-crossing
-// intersection oracle and a dense-sampling distance oracle.
+// intersection oracle, a dense-sampling distance oracle and, for coplanar pairs
+// (nearly collinear edges included), a separating-axis oracle.
 #include "occlude/collision/triangle_triangle.h"
 
 #include <gtest/gtest.h>
@@ -571,6 +572,203 @@ TEST(TriangleTriangleTest, WithinAgreesWithDistance) {
   const Tri a = {Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0)};
   EXPECT_FALSE(Within(a, a, -1.0, &w));
   EXPECT_GT(w.distance, -1.0);
+}
+
+// ----- Coplanar pairs with nearly collinear edges ----------------------------
+
+/// Distance of two coplanar triangles known to be disjoint, independently of
+/// the library: the closest pair of disjoint coplanar triangles has a corner of
+/// one of them.
+double CoplanarDisjointDistance(const Tri& a, const Tri& b) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    best = std::min({best, DistanceToTriangle(a[k], b), DistanceToTriangle(b[k], a)});
+  }
+  return best;
+}
+
+using Tri2 = std::array<Eigen::Vector2d, 3>;
+
+/// Independent 2D oracle: the largest gap between the projections of the two
+/// triangles on the 6 edge normals (separating axis theorem). Positive: the
+/// triangles are apart, by at least that much; zero or negative: they meet
+/// (touching counts). The triangles must have non-zero area.
+double SeparatingAxisGap(const Tri2& a, const Tri2& b) {
+  double gap = -std::numeric_limits<double>::infinity();
+  for (const Tri2* t : {&a, &b}) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d e = (*t)[(k + 1) % 3] - (*t)[k];
+      const Eigen::Vector2d n = Eigen::Vector2d(-e.y(), e.x()).normalized();
+      double lo_a = std::numeric_limits<double>::infinity();
+      double hi_a = -lo_a;
+      double lo_b = lo_a;
+      double hi_b = -lo_a;
+      for (int i = 0; i < 3; ++i) {
+        lo_a = std::min(lo_a, n.dot(a[i]));
+        hi_a = std::max(hi_a, n.dot(a[i]));
+        lo_b = std::min(lo_b, n.dot(b[i]));
+        hi_b = std::max(hi_b, n.dot(b[i]));
+      }
+      gap = std::max({gap, lo_b - hi_a, lo_a - hi_b});
+    }
+  }
+  return gap;
+}
+
+/// The 2D triangle t placed in the coordinate plane normal to `axis` at height
+/// `level` (in-plane coordinates on the two other axes, in cyclic order).
+Tri InAxisPlane(const Tri2& t, int axis, double level) {
+  Tri r;
+  for (int i = 0; i < 3; ++i) {
+    r[i][axis] = level;
+    r[i][(axis + 1) % 3] = t[i].x();
+    r[i][(axis + 2) % 3] = t[i].y();
+  }
+  return r;
+}
+
+TEST(TriangleTriangleTest, CoplanarNearlyCollinearEdgesTwelveApart) {
+  // Reported: two triangles in the plane y = -6, 12 mm apart, with an edge of
+  // each on nearly the same line. The 2D orientations of those edges round to
+  // zero, which must not be read as contact without the ends being within the
+  // other edge's extent.
+  const Tri a = {Vec(-17.493884909091364, -6, -14.538682564429198),
+                 Vec(-18.218409445386321, -6, -13.355538712548226),
+                 Vec(-17.304049085772526, -6, -13.529140917741405)};
+  const Tri b = {Vec(-30.105094120365663, -6, -11.098710045036901),
+                 Vec(-31.019454479979458, -6, -10.925107839843722),
+                 Vec(-30.816331485049211, -6, -9.8661040604646129)};
+  const double expected = CoplanarDisjointDistance(a, b);
+  ASSERT_GT(expected, 12.0);
+  ASSERT_LT(expected, 13.0);
+  auto check = [&](const Tri& x, const Tri& y) {
+    for (const Tri& xx : Orders(x)) {
+      for (const Tri& yy : Orders(y)) {
+        ASSERT_FALSE(Intersect(xx, yy));
+        ASSERT_FALSE(Intersect(yy, xx));
+        const TriangleDistance d = Distance(xx, yy);
+        ASSERT_FALSE(d.intersecting);
+        ASSERT_NEAR(d.distance, expected, 1e-9);
+        ExpectConsistent(xx, yy, d);
+        TriangleDistance w;
+        ASSERT_TRUE(Within(xx, yy, 1.001 * expected, &w));
+        ASSERT_FALSE(w.intersecting);
+        ASSERT_EQ(w.distance, d.distance);
+        ASSERT_FALSE(Within(xx, yy, 0.999 * expected, nullptr));
+        ASSERT_FALSE(Within(xx, yy, 1.0, nullptr));
+      }
+    }
+  };
+  check(a, b);
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Isometry3d t = RandomRigid(rng, 50);
+    check(Transformed(t, a), Transformed(t, b));
+  }
+}
+
+TEST(TriangleTriangleTest, RandomCoplanarPairsAgainstSeparatingAxisOracle) {
+  // Pairs in a coordinate plane at jaw-scan coordinates (tens of mm), about
+  // half of them with an edge of B on the line through an edge of A (collinear
+  // up to the rounding of the coordinates), anywhere from overlapping to 20 mm
+  // apart along it; then the same pairs after a rigid motion (no longer exactly
+  // coplanar). Compared with the separating-axis oracle, skipping pairs within
+  // kUndecided of touching, where rounding may decide either way.
+  constexpr double kUndecided = 1e-9;
+  std::mt19937 rng(2718);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double levels[] = {-6.0, 0.0, 14.75, -31.3};
+  int decided = 0;
+  int apart = 0;
+  int apart_collinear = 0;
+  int meeting = 0;
+  for (int trial = 0; trial < 10000; ++trial) {
+    const double size = 0.5 + 1.5 * unit(rng);
+    const Eigen::Vector2d center(-20 + 15 * u(rng), -20 + 15 * u(rng));
+    Tri2 a2;
+    for (auto& v : a2) v = center + size * Eigen::Vector2d(u(rng), u(rng));
+    auto well_shaped = [](const Tri2& t) {
+      const Eigen::Vector2d e1 = t[1] - t[0];
+      const Eigen::Vector2d e2 = t[2] - t[0];
+      return std::abs(e1.x() * e2.y() - e1.y() * e2.x()) > 0.05 * e1.norm() * e2.norm();
+    };
+    if (!well_shaped(a2)) continue;
+    Tri2 b2;
+    const bool collinear = trial % 2 == 0;
+    if (collinear) {
+      // B's edge (b0, b1) on the line p + s (q - p) through A's edge k.
+      const int k = trial / 2 % 3;
+      const Eigen::Vector2d p = a2[k];
+      const Eigen::Vector2d e = a2[(k + 1) % 3] - p;
+      const double s0 = 8 * u(rng);
+      const double s1 = s0 + (0.2 + 2 * unit(rng)) * (unit(rng) < 0.5 ? -1 : 1);
+      b2[0] = p + s0 * e;
+      b2[1] = p + s1 * e;
+      const double side = (0.2 + 1.3 * unit(rng)) * (unit(rng) < 0.5 ? -1 : 1);
+      b2[2] = p + (0.5 * (s0 + s1) + 0.5 * u(rng)) * e + side * Eigen::Vector2d(-e.y(), e.x());
+      std::shuffle(b2.begin(), b2.end(), rng);
+    } else {
+      const Eigen::Vector2d shift = 2.5 * size * Eigen::Vector2d(u(rng), u(rng));
+      for (auto& v : b2) v = center + shift + size * Eigen::Vector2d(u(rng), u(rng));
+    }
+    if (!well_shaped(b2)) continue;
+    const double gap = SeparatingAxisGap(a2, b2);
+    if (std::abs(gap) < kUndecided) continue;
+    ++decided;
+    const bool expected = gap < 0.0;
+    apart += expected ? 0 : 1;
+    apart_collinear += !expected && collinear ? 1 : 0;
+    meeting += expected ? 1 : 0;
+    const int axis = trial % 3;
+    const double level = levels[trial / 3 % 4];
+    const Tri a = InAxisPlane(a2, axis, level);
+    const Tri b = InAxisPlane(b2, axis, level);
+    const Eigen::Isometry3d t = RandomRigid(rng, 50);
+    for (const auto& [x, y] : {std::pair{a, b}, std::pair{Transformed(t, a), Transformed(t, b)}}) {
+      ASSERT_EQ(Intersect(x, y), expected) << "trial " << trial << " gap " << gap;
+      ASSERT_EQ(Intersect(y, x), expected) << "trial " << trial << " gap " << gap;
+      const TriangleDistance d = Distance(x, y);
+      ASSERT_EQ(d.intersecting, expected) << "trial " << trial;
+      ExpectConsistent(x, y, d);
+      if (expected) {
+        ASSERT_EQ(d.distance, 0.0);
+        continue;
+      }
+      const double reference = CoplanarDisjointDistance(x, y);
+      ASSERT_GE(reference, gap - kUndecided);  // the axis gap is a lower bound
+      ASSERT_NEAR(d.distance, reference, kUndecided) << "trial " << trial;
+      ASSERT_TRUE(Within(x, y, reference + kUndecided, nullptr)) << "trial " << trial;
+      ASSERT_FALSE(Within(x, y, reference - kUndecided, nullptr)) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(decided, 8000);  // the generator exercises both outcomes, and
+  EXPECT_GT(meeting, 600);   // collinear edges far apart in particular
+  EXPECT_GT(apart, 6000);
+  EXPECT_GT(apart_collinear, 3000);
+}
+
+TEST(TriangleTriangleTest, CoplanarPairsSharingACornerTouch) {
+  // A corner of B placed exactly on a corner of A: the pair touches whatever
+  // the rest of B does, in a coordinate plane and after a rigid motion.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Eigen::Vector2d center(-20 + 15 * u(rng), -20 + 15 * u(rng));
+    Tri2 a2;
+    Tri2 b2;
+    for (auto& v : a2) v = center + 2 * Eigen::Vector2d(u(rng), u(rng));
+    for (auto& v : b2) v = center + 4 * Eigen::Vector2d(u(rng), u(rng));
+    b2[trial % 3] = a2[trial / 3 % 3];
+    const Tri a = InAxisPlane(a2, trial % 3, -6.0);
+    const Tri b = InAxisPlane(b2, trial % 3, -6.0);
+    const Eigen::Isometry3d t = RandomRigid(rng, 50);
+    for (const auto& [x, y] : {std::pair{a, b}, std::pair{Transformed(t, a), Transformed(t, b)}}) {
+      ASSERT_TRUE(Intersect(x, y)) << "trial " << trial;
+      ASSERT_TRUE(Intersect(y, x)) << "trial " << trial;
+      ASSERT_TRUE(Distance(x, y).intersecting) << "trial " << trial;
+    }
+  }
 }
 
 }  // namespace
