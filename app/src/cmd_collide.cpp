@@ -135,16 +135,16 @@ void AddCollideCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--pose", args->pose, "Pose file (JSON with a 4x4 \"X_LU\"); default identity");
   cmd->add_option("--voxel", args->voxel_mm, "Voxel size, mm")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveMm());
   cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
-      ->check(CLI::Range(0.0, 5.0));
+      ->check(BandMm());
   cmd->add_option("--out", args->out, "Output folder for collide.json (and sweep.txt/json)");
   cmd->add_flag("--sweep", args->sweep,
                 "Also sweep the upper jaw along --axis through the pose, timing every sphere mode");
   cmd->add_option("--axis", args->axis, "Sweep axis, lower to upper: x, y, z, -x, -y, -z")
       ->capture_default_str();
   cmd->add_option("--reps", args->reps, "Repetitions per timed query in the sweep")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(CLI::Range(1, 100000));
   cmd->callback([args] { RunCollide(*args); });
 }
 

@@ -83,11 +83,11 @@ void AddDemoCommand(CLI::App& app) {
   cmd->add_option("--triangles", args->triangles, "Triangle budget per jaw")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Generator seed")->capture_default_str();
   cmd->add_option("--voxel", args->voxel_mm, "Voxel size, mm")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveMm());
   cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(BandMm());
   cmd->add_option("--reps", args->reps, "Repetitions per timed query")->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--out", args->out, "Output folder")->capture_default_str();
   cmd->callback([args] { RunDemo(*args); });
 }

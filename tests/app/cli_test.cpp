@@ -1,0 +1,112 @@
+// The `occlude` command as a user runs it: bad inputs give one line naming the
+// file or option, a non-zero exit and no output file; good inputs write their
+// outputs. Runs the real binary (OCCLUDE_BINARY, injected by CMake).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sys/wait.h>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "test_common.h"
+
+namespace occlude::test {
+namespace {
+
+struct CommandRun {
+  int exit_code = 0;
+  std::string output;  // stdout + stderr
+};
+
+CommandRun Occlude(const std::string& args) {
+  const std::string cmd = std::string(OCCLUDE_BINARY) + " " + args + " 2>&1";
+  CommandRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+bool EmptyOrMissing(const std::filesystem::path& dir) {
+  std::error_code ec;
+  return !std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec);
+}
+
+TEST(CliTest, SynthWritesACaseFolder) {
+  TempDir tmp;
+  const CommandRun r = Occlude("synth --triangles 5000 --seed 2 --out " + (tmp / "case").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(tmp / "case" / "upper.stl"));
+  EXPECT_TRUE(std::filesystem::exists(tmp / "case" / "lower.stl"));
+  std::ifstream truth(tmp / "case" / "truth.json");
+  std::stringstream text;
+  text << truth.rdbuf();
+  EXPECT_NE(text.str().find("\"X_LU\""), std::string::npos);
+  EXPECT_NE(text.str().find("\"contacts\""), std::string::npos);
+}
+
+TEST(CliTest, CollideOnTheSyntheticCaseFindsTheBite) {
+  TempDir tmp;
+  ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
+  const CommandRun r = Occlude("collide --lower " + (tmp / "case" / "lower.stl").string() + " --upper " +
+                        (tmp / "case" / "upper.stl").string() + " --voxel 0.3 --out " +
+                        (tmp / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("triangle pairs within the band"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(tmp / "out" / "collide.json"));
+}
+
+struct BadCase {
+  const char* name;
+  std::string args;      // {T} = temporary folder
+  const char* expected;  // substring of the one-line message
+};
+
+class CliBadInputTest : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(CliBadInputTest, OneLineErrorNonZeroExitAndNoOutput) {
+  TempDir tmp;
+  {
+    std::ofstream(tmp / "garbage.stl") << "this is not a mesh\n";
+    std::ofstream(tmp / "empty.stl");
+    std::ofstream(tmp / "scaled.json") << R"({"X_LU": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
+    std::ofstream(tmp / "nan.json") << R"({"X_LU": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0]]})";
+  }
+  ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
+  std::string args = GetParam().args;
+  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;) args.replace(at, 3, tmp.path().string());
+  const CommandRun r = Occlude(args + " --out " + (tmp / "out").string());
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << r.output;
+  EXPECT_TRUE(EmptyOrMissing(tmp / "out")) << "a failed run wrote output";
+  // One line of error (CLI11 adds a "Run with --help" hint for option errors).
+  EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
+}
+
+const std::string kGood = " --lower {T}/case/lower.stl --upper {T}/case/upper.stl";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInputTest,
+    ::testing::Values(
+        BadCase{"missing_file", "collide --lower {T}/nope.stl --upper {T}/case/upper.stl", "no such file"},
+        BadCase{"garbage_file", "collide --lower {T}/garbage.stl --upper {T}/case/upper.stl", "garbage.stl"},
+        BadCase{"empty_file", "collide --lower {T}/empty.stl --upper {T}/case/upper.stl", "empty.stl"},
+        BadCase{"folder_as_mesh", "collide --lower {T}/case --upper {T}/case/upper.stl", "case"},
+        BadCase{"zero_voxel", "collide" + kGood + " --voxel 0", "--voxel"},
+        BadCase{"negative_band", "collide" + kGood + " --delta -1", "--delta"},
+        BadCase{"band_over_5mm", "collide" + kGood + " --delta 6", "--delta"},
+        BadCase{"bad_units", "collide" + kGood + " --units furlong", "--units"},
+        BadCase{"scaled_pose", "collide" + kGood + " --pose {T}/scaled.json", "not orthonormal"},
+        BadCase{"broken_pose", "collide" + kGood + " --pose {T}/nan.json", "nan.json"},
+        BadCase{"tiny_voxel_overflows", "collide" + kGood + " --voxel 0.00001", "smallest voxel size"},
+        BadCase{"synth_budget", "synth --triangles 100", "--triangles"}),
+    [](const ::testing::TestParamInfo<BadCase>& param_info) { return std::string(param_info.param.name); });
+
+}  // namespace
+}  // namespace occlude::test
