@@ -21,7 +21,7 @@ using io::TriangleMesh;
 class OracleBlockTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    auto lower = std::make_shared<TriangleMesh>(test::MakeBox({-6, -3, -6}, {6, 0, 6}));
+    auto lower = std::make_shared<TriangleMesh>(test::MakeBox({-3, -2, -3}, {3, 0, 3}));
     auto upper = std::make_shared<TriangleMesh>(test::MakeBox({-2, 0, -2}, {2, 4, 2}));
     OracleOptions options;
     options.voxel_size_mm = 0.2;
