@@ -177,7 +177,7 @@ TEST(OracleSyntheticTest, GroundTruthBiteTouchesOnBothSidesWithoutPenetration) {
   o.triangles_per_jaw = 5000;
   const io::SyntheticJawPair jaws = io::MakeSyntheticJawPair(o);
   OracleOptions options;
-  options.voxel_size_mm = 0.3;  // coarse enough to keep the sanitizer lane fast
+  options.voxel_size_mm = 0.5;  // coarse enough to keep the sanitizer lane fast
   const auto lower = std::make_shared<io::TriangleMesh>(jaws.lower_L);
   const auto upper = std::make_shared<io::TriangleMesh>(jaws.upper_U);
   options.arch = EstimateArchFrame(jaws.lower_L, jaws.upper_U.Transformed(jaws.X_LU));

@@ -83,7 +83,7 @@ TEST(SyntheticPairQueryTest, ModesAgreeAndNoTrianglePairWithinDeltaIsMissed) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-1, 1);
   const double delta = 0.1;
-  for (int trial = 0; trial < 6; ++trial) {
+  for (int trial = 0; trial < 3; ++trial) {
     Eigen::Isometry3d jitter = Eigen::Isometry3d::Identity();
     jitter.linear() = Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
                           .toRotationMatrix();
