@@ -3,6 +3,7 @@
 // proximity on the outward side, scaling with the voxel size, the memory
 // estimate, errors, determinism, and the real meshes when ../shared/data exists.
 #include "occlude/collision/voxel_grid.h"
+#include "occlude/io/mesh_io.h"
 
 #include <gtest/gtest.h>
 
@@ -24,38 +25,13 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-/// Minimal binary STL reader with exact welding (the real loader, io::LoadMesh, is
-/// not ready yet). Returns an empty mesh when the file cannot be read.
+/// The real loader; an empty mesh when the file cannot be read.
 io::TriangleMesh ReadBinaryStl(const std::filesystem::path& file) {
-  io::TriangleMesh mesh;
-  std::ifstream in(file, std::ios::binary);
-  char header[80];
-  std::uint32_t count = 0;
-  if (!in.read(header, 80) || !in.read(reinterpret_cast<char*>(&count), 4)) return mesh;
-  std::vector<std::array<float, 3>> corners(3 * std::size_t{count});
-  char record[50];
-  for (std::uint32_t t = 0; t < count && in.read(record, 50); ++t) {
-    for (int k = 0; k < 3; ++k) std::memcpy(corners[3 * t + k].data(), record + 12 + 12 * k, 12);
+  try {
+    return io::LoadMesh(file);
+  } catch (const io::MeshError&) {
+    return {};
   }
-  std::vector<std::uint32_t> order(corners.size());
-  for (std::uint32_t n = 0; n < order.size(); ++n) order[n] = n;
-  std::sort(order.begin(), order.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return corners[a] < corners[b]; });
-  std::vector<int> index(corners.size());
-  for (std::size_t n = 0; n < order.size(); ++n) {
-    if (n == 0 || corners[order[n]] != corners[order[n - 1]]) {
-      const auto& c = corners[order[n]];
-      mesh.vertices.emplace_back(c[0], c[1], c[2]);
-    }
-    index[order[n]] = static_cast<int>(mesh.vertices.size()) - 1;
-  }
-  for (std::uint32_t t = 0; t < count; ++t) {
-    mesh.triangles.emplace_back(index[3 * t], index[3 * t + 1], index[3 * t + 2]);
-  }
-  mesh.parts.push_back({file.stem().string(), 0});
-  mesh.triangle_part.assign(mesh.triangles.size(), 0);
-  mesh.ComputeFaceNormals();
-  return mesh;
 }
 
 /// Index of surface voxel ijk in grid.surface_keys, or -1.
