@@ -15,35 +15,25 @@ class UserError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Validator for a length option: a finite number of millimetres above zero.
-inline CLI::Validator PositiveMm() {
+/// Validator for a length in mm: a finite number in (lo, hi], or [lo, hi] when
+/// `lo_inclusive`; the message says what the option must be.
+inline CLI::Validator MmBetween(double lo, bool lo_inclusive, double hi, const std::string& what) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [=](std::string& text) -> std::string {
         try {
           std::size_t used = 0;
           const double v = std::stod(text, &used);
-          if (used == text.size() && v > 0.0 && v < 1e6) return "";
+          if (used == text.size() && (lo_inclusive ? v >= lo : v > lo) && v <= hi) return "";
         } catch (const std::exception&) {
         }
-        return "must be a positive length in mm, got '" + text + "'";
+        return "must be " + what + ", got '" + text + "'";
       },
-      "MM>0");
+      "MM");
 }
-
-/// Validator for a contact band: a finite number of millimetres in [0, 5].
-inline CLI::Validator BandMm() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          std::size_t used = 0;
-          const double v = std::stod(text, &used);
-          if (used == text.size() && v >= 0.0 && v <= 5.0) return "";
-        } catch (const std::exception&) {
-        }
-        return "must be a band in mm between 0 and 5, got '" + text + "'";
-      },
-      "0..5 MM");
-}
+/// A voxel size or other positive length.
+inline CLI::Validator PositiveMm() { return MmBetween(0.0, false, 1e6, "a positive length in mm"); }
+/// A contact band.
+inline CLI::Validator BandMm() { return MmBetween(0.0, true, 5.0, "a band in mm between 0 and 5"); }
 
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);
