@@ -357,15 +357,19 @@ class CellTraversal {
   std::vector<CubePairTest> cube_tests_;  // per B level 0..kMaxCellLevel
 };
 
-void Validate(const Eigen::Isometry3d& X_AB, const CollisionRequest& request) {
-  if (!(request.delta_mm >= 0.0) || !std::isfinite(request.delta_mm)) {
-    throw std::invalid_argument("CollisionRequest.delta_mm must be finite and >= 0");
-  }
+void ValidatePose(const Eigen::Isometry3d& X_AB) {
   if (!X_AB.matrix().allFinite()) throw std::invalid_argument("X_AB has non-finite entries");
   const Eigen::Matrix3d RtR = X_AB.linear().transpose() * X_AB.linear();
   if (!RtR.isApprox(Eigen::Matrix3d::Identity(), 1e-6) || X_AB.linear().determinant() < 0) {
     throw std::invalid_argument("X_AB is not a rigid transform (rotation not orthonormal)");
   }
+}
+
+void Validate(const Eigen::Isometry3d& X_AB, const CollisionRequest& request) {
+  if (!(request.delta_mm >= 0.0) || !std::isfinite(request.delta_mm)) {
+    throw std::invalid_argument("CollisionRequest.delta_mm must be finite and >= 0");
+  }
+  ValidatePose(X_AB);
 }
 
 }  // namespace
@@ -418,8 +422,7 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
   if (request.a_level < 0 || request.a_level > kMaxLevels - 1) {
     throw std::invalid_argument("CellRequest.a_level must be >= 0");
   }
-  CollisionRequest check;
-  Validate(X_AB, check);
+  ValidatePose(X_AB);
   result->cells_b.clear();
   result->node_tests = result->leaf_tests = 0;
   if (a.empty() || b.empty()) return;

@@ -24,8 +24,13 @@ void CheckRequest(const OracleRequest& r) {
   if (!r.pivot_L.allFinite()) throw std::invalid_argument("OracleRequest.pivot_L must be finite");
 }
 
+// Distance from the lower surface up to which samples matter: the broad phase
+// reports every cell holding such a sample, and the exact level searches this far.
+double Reach(const OracleRequest& r) {
+  return std::max({r.contact_band_mm, r.penetration_search_mm, r.residuals ? r.residual_band_mm : 0.0});
+}
+
 void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
-  const std::vector<PartTotals> no_parts;
   r->level = level;
   r->max_penetration_mm = r->penetration_area_mm2 = 0.0;
   r->deepest_p_L.setZero();
@@ -54,9 +59,7 @@ void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int3
     case AccuracyLevel::kSubVoxel: known = sdf_.Interpolate(p_L, &d, &grad); break;
     case AccuracyLevel::kExact: {
       SignedDistanceSample s;
-      const double reach = std::max({request.contact_band_mm, request.penetration_search_mm,
-                                     request.residuals ? request.residual_band_mm : 0.0});
-      known = sdf_.Exact(p_L, reach, &s);
+      known = sdf_.Exact(p_L, Reach(request), &s);
       d = s.distance;
       grad = s.normal;
       break;
@@ -133,17 +136,16 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   cells.cell_level = options_.cell_level;
   cells.a_level = options_.lower_level;
   // A sample within `reach` of the lower surface lies in a reported cell.
-  cells.reach_mm = std::max({request.contact_band_mm, request.penetration_search_mm,
-                             request.residuals ? request.residual_band_mm : 0.0});
+  cells.reach_mm = Reach(request);
   thread_local CellResult found;
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
   // A cell whose centre is known to be farther from the lower surface than its
   // radius plus the reach holds no sample of interest.
-  const double cell_radius = kCubeCircumradius * upper_.edge(options_.cell_level);
+  const int level = std::min(options_.cell_level, upper_.octree().top_level);
+  const double cell_radius = kCubeCircumradius * upper_.edge(level);
   for (const std::uint32_t node : found.cells_b) {
-    const int level = std::min(options_.cell_level, upper_.octree().top_level);
     double d = 0.0;
     if (sdf_.Interpolate(X_LU * upper_.CubeCenter(node, level), &d) &&
         d > cell_radius + cells.reach_mm) {
