@@ -5,38 +5,15 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <sys/wait.h>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "run_occlude.h"
 #include "test_common.h"
 
 namespace occlude::test {
 namespace {
-
-struct CommandRun {
-  int exit_code = 0;
-  std::string output;  // stdout + stderr
-};
-
-CommandRun Occlude(const std::string& args) {
-  const std::string cmd = std::string(OCCLUDE_BINARY) + " " + args + " 2>&1";
-  CommandRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-bool EmptyOrMissing(const std::filesystem::path& dir) {
-  std::error_code ec;
-  return !std::filesystem::exists(dir, ec) || std::filesystem::is_empty(dir, ec);
-}
 
 TEST(CliTest, SynthWritesACaseFolder) {
   TempDir tmp;
@@ -54,9 +31,9 @@ TEST(CliTest, SynthWritesACaseFolder) {
 TEST(CliTest, CollideOnTheSyntheticCaseFindsTheBite) {
   TempDir tmp;
   ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
-  const CommandRun r = Occlude("collide --lower " + (tmp / "case" / "lower.stl").string() + " --upper " +
-                        (tmp / "case" / "upper.stl").string() + " --voxel 0.3 --out " +
-                        (tmp / "out").string());
+  const CommandRun r = Occlude("collide --lower " + (tmp / "case" / "lower.stl").string() +
+                               " --upper " + (tmp / "case" / "upper.stl").string() +
+                               " --voxel 0.3 --out " + (tmp / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("triangle pairs within the band"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(tmp / "out" / "collide.json"));
@@ -80,7 +57,8 @@ TEST_P(CliBadInputTest, OneLineErrorNonZeroExitAndNoOutput) {
   }
   ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
   std::string args = GetParam().args;
-  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;) args.replace(at, 3, tmp.path().string());
+  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;)
+    args.replace(at, 3, tmp.path().string());
   const CommandRun r = Occlude(args + " --out " + (tmp / "out").string());
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << r.output;
@@ -94,9 +72,12 @@ const std::string kGood = " --lower {T}/case/lower.stl --upper {T}/case/upper.st
 INSTANTIATE_TEST_SUITE_P(
     Cases, CliBadInputTest,
     ::testing::Values(
-        BadCase{"missing_file", "collide --lower {T}/nope.stl --upper {T}/case/upper.stl", "no such file"},
-        BadCase{"garbage_file", "collide --lower {T}/garbage.stl --upper {T}/case/upper.stl", "garbage.stl"},
-        BadCase{"empty_file", "collide --lower {T}/empty.stl --upper {T}/case/upper.stl", "empty.stl"},
+        BadCase{"missing_file", "collide --lower {T}/nope.stl --upper {T}/case/upper.stl",
+                "no such file"},
+        BadCase{"garbage_file", "collide --lower {T}/garbage.stl --upper {T}/case/upper.stl",
+                "garbage.stl"},
+        BadCase{"empty_file", "collide --lower {T}/empty.stl --upper {T}/case/upper.stl",
+                "empty.stl"},
         BadCase{"folder_as_mesh", "collide --lower {T}/case --upper {T}/case/upper.stl", "case"},
         BadCase{"zero_voxel", "collide" + kGood + " --voxel 0", "--voxel"},
         BadCase{"negative_band", "collide" + kGood + " --delta -1", "--delta"},
@@ -104,9 +85,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bad_units", "collide" + kGood + " --units furlong", "--units"},
         BadCase{"scaled_pose", "collide" + kGood + " --pose {T}/scaled.json", "not orthonormal"},
         BadCase{"broken_pose", "collide" + kGood + " --pose {T}/nan.json", "nan.json"},
-        BadCase{"tiny_voxel_overflows", "collide" + kGood + " --voxel 0.00001", "smallest voxel size"},
+        BadCase{"tiny_voxel_overflows", "collide" + kGood + " --voxel 0.00001",
+                "smallest voxel size"},
         BadCase{"synth_budget", "synth --triangles 100", "--triangles"}),
-    [](const ::testing::TestParamInfo<BadCase>& param_info) { return std::string(param_info.param.name); });
+    [](const ::testing::TestParamInfo<BadCase>& param_info) {
+      return std::string(param_info.param.name);
+    });
 
 }  // namespace
 }  // namespace occlude::test
