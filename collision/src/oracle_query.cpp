@@ -2,6 +2,7 @@
 // the samples of each reported upper cell against the lower's signed distance,
 // at the requested accuracy level, accumulated into contact, penetration,
 // per-part and regional totals and least-squares residuals.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -49,7 +50,7 @@ void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
 }  // namespace
 
 void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                              const OracleRequest& request, OracleResult* result) const {
+                              const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
   ++result->samples_evaluated;
   double d = 0.0;
   Eigen::Vector3d grad = Eigen::Vector3d::Zero();
@@ -66,6 +67,7 @@ void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int3
     }
   }
   if (!known) {
+    if (!may_be_deep) return;
     // Outside the measured range: deep inside the lower jaw, or simply far away.
     const VoxelGrid& g = lower_.grid();
     if (g.Classify(g.VoxelOf(p_L)) == VoxelClass::kInterior) ++result->deep_samples;
@@ -108,19 +110,19 @@ void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int3
 }
 
 void JawOracle::EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU,
-                             const OracleRequest& request, OracleResult* result) const {
+                             const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
   const std::uint32_t first = node_leaf_begin_[node], last = node_leaf_end_[node];
   if (request.level == AccuracyLevel::kVoxel) {
     for (std::uint32_t v = first; v < last; ++v) {
       if (voxel_area_[v] <= 0.0f) continue;
       EvaluatePoint(X_LU * voxel_centroid_U_[v].cast<double>(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
-                    result);
+                    may_be_deep, result);
     }
     return;
   }
   for (auto i = voxel_sample_begin_[first]; i < voxel_sample_begin_[last]; ++i) {
     EvaluatePoint(X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]), sample_part_[i], request,
-                  result);
+                  may_be_deep, result);
   }
 }
 
@@ -135,23 +137,37 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   CellRequest cells;
   cells.cell_level = options_.cell_level;
   cells.a_level = options_.lower_level;
+  cells.distance_bound = options_.distance_bound;
   // A sample within `reach` of the lower surface lies in a reported cell.
   cells.reach_mm = Reach(request);
   thread_local CellResult found;
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
-  // A cell whose centre is known to be farther from the lower surface than its
-  // radius plus the reach holds no sample of interest.
+  // A cell whose centre lies outside the lower farther than its radius plus
+  // the outer band holds no sample of interest: samples only count outside up
+  // to the contact band (or the residual band). The interpolated value at the
+  // centre is within 0.866 s of the exact signed distance (a convex
+  // combination of exact corner values of a 1-Lipschitz function), and so is
+  // every sample's value, hence the margin of 2 * 0.866 s.
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
   const double cell_radius = kCubeCircumradius * upper_.edge(level);
+  const double outer = std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
+  const double skip_above = cell_radius + outer + 2.0 * kCubeCircumradius * sdf_.voxel_size_mm();
+  // A centre known to be at d > -band + radius + 0.866 s has every sample
+  // within the band or outside it (same Lipschitz argument): none is deep.
+  const double shallow_above = cell_radius + kCubeCircumradius * sdf_.voxel_size_mm() - sdf_.band_mm();
   for (const std::uint32_t node : found.cells_b) {
     double d = 0.0;
-    if (sdf_.Interpolate(X_LU * upper_.CubeCenter(node, level), &d) &&
-        d > cell_radius + cells.reach_mm) {
-      continue;
-    }
-    EvaluateCell(node, X_LU, request, result);
+    const Eigen::Vector3d c_L = X_LU * upper_.CubeCenter(node, level);
+    const bool known = sdf_.Interpolate(c_L, &d);
+    if (known && d > skip_above) continue;
+    // A centre beyond the band is farther than band_mm from the surface, so
+    // every sample (within the radius, below band_mm) is on the centre's side.
+    const bool may_be_deep =
+        known ? d <= shallow_above
+              : lower_.grid().Classify(lower_.grid().VoxelOf(c_L)) == VoxelClass::kInterior;
+    EvaluateCell(node, X_LU, request, may_be_deep, result);
   }
 
   const double lr = result->left_share + result->right_share;

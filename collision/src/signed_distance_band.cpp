@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "occlude/collision/closest_point.h"
 #include "occlude/collision/morton.h"
@@ -165,26 +166,42 @@ std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) 
   // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
   // triangle lies within sqrt(3) (d + 2) s: the search always succeeds.
   const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
-  std::vector<float> value;
-  value.reserve(corners.num_voxels());
-  std::uint32_t hint = kNoHint;
-  std::vector<std::uint32_t> seen(mesh_->num_triangles(), 0);
-  std::uint32_t epoch = 0;
-  for (const auto& brick : corners.bricks()) {
-    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
-      const std::uint64_t key = brick.key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
-      const Eigen::Vector3i ijk = MortonDecode(key) - Eigen::Vector3i::Constant(shift_);
-      const Eigen::Vector3d p = origin_ + s_ * ijk.cast<double>();
-      Nearest n;
-      n.seen = &seen;
-      n.epoch = ++epoch;
-      if (FindNearest(p, reach * reach, hint, &n)) {
-        value.push_back(static_cast<float>(Sign(p, n).distance));
-        hint = n.triangle;
-      } else {
-        value.push_back(static_cast<float>(reach));  // unreachable for a consistent grid
+  std::vector<float> value(corners.num_voxels());
+  const auto& bricks = corners.bricks();
+  // Bricks [first, last): each corner seeded with the previous corner's closest
+  // triangle (neighbours in Morton order share it most of the time).
+  auto fill = [&](std::size_t first, std::size_t last) {
+    std::uint32_t hint = kNoHint;
+    std::vector<std::uint32_t> seen(mesh_->num_triangles(), 0);
+    std::uint32_t epoch = 0;
+    for (std::size_t bi = first; bi < last; ++bi) {
+      std::uint32_t slot = bricks[bi].first;
+      for (std::uint64_t m = bricks[bi].mask; m != 0; m &= m - 1, ++slot) {
+        const std::uint64_t key = bricks[bi].key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
+        const Eigen::Vector3i ijk = MortonDecode(key) - Eigen::Vector3i::Constant(shift_);
+        const Eigen::Vector3d p = origin_ + s_ * ijk.cast<double>();
+        Nearest n;
+        n.seen = &seen;
+        n.epoch = ++epoch;
+        if (FindNearest(p, reach * reach, hint, &n)) {
+          value[slot] = static_cast<float>(Sign(p, n).distance);
+          hint = n.triangle;
+        } else {
+          value[slot] = static_cast<float>(reach);  // unreachable for a consistent grid
+        }
       }
     }
+  };
+  // Two halves on two threads (the values do not depend on the split: each is
+  // the exact distance; only tie-breaking between equidistant triangles could,
+  // and the split is fixed, so builds stay deterministic).
+  const std::size_t half = bricks.size() / 2;
+  if (bricks.size() < 64) {
+    fill(0, bricks.size());
+  } else {
+    std::thread other(fill, half, bricks.size());
+    fill(0, half);
+    other.join();
   }
   return value;
 }
@@ -196,17 +213,18 @@ void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
   for (int axis = 0; axis < 3; ++axis) corners.Dilate(axis, true, false);
   corners.Finish();
   const std::vector<float> value = CornerValues(corners);
-  std::uint64_t offset[8];
-  for (int o = 0; o < 8; ++o) offset[o] = MortonEncode(o & 1, (o >> 1) & 1, o >> 2);
-  blocks_.clear();
-  blocks_.reserve(band.num_voxels());
-  for (const auto& brick : band.bricks()) {
-    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
-      const std::uint64_t key = brick.key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
-      std::array<float, 8> block;
-      for (int o = 0; o < 8; ++o)
-        block[static_cast<std::size_t>(o)] = value[corners.Rank(MortonAdd(key, offset[o]))];
-      blocks_.push_back(block);
+  corner_bricks_.assign(band.bricks().size(), CornerBrick{});
+  for (std::size_t i = 0; i < band.bricks().size(); ++i) {
+    const Eigen::Vector3i base = 4 * MortonDecode(band.bricks()[i].key);
+    corner_bricks_[i].mask = band.bricks()[i].mask;
+    float* out = corner_bricks_[i].value;
+    for (int z = 0; z < 5; ++z) {
+      for (int y = 0; y < 5; ++y) {
+        for (int x = 0; x < 5; ++x) {
+          const std::uint32_t r = corners.Rank(MortonEncode(base + Eigen::Vector3i(x, y, z)));
+          out[x + 5 * y + 25 * z] = r == detail::KeyIndexHash::kNotFound ? 0.0f : value[r];
+        }
+      }
     }
   }
   band_ = band;
@@ -340,49 +358,58 @@ bool NarrowBandSdf::Exact(const Eigen::Vector3d& p_F, double max_distance,
   return true;
 }
 
-const std::array<float, 8>* NarrowBandSdf::Locate(const Eigen::Vector3d& p,
-                                                  Eigen::Vector3d* local) const {
-  if (blocks_.empty()) return nullptr;
+namespace {
+/// Offset of corner o = x + 2y + 4z from corner 0 in a 5x5x5 corner brick.
+constexpr int kCornerStep[8] = {0, 1, 5, 6, 25, 26, 30, 31};
+}  // namespace
+
+const float* NarrowBandSdf::Locate(const Eigen::Vector3d& p, Eigen::Vector3f* local) const {
+  if (corner_bricks_.empty()) return nullptr;
   const Eigen::Vector3d q = (p - origin_) * inv_s_;
   const Eigen::Vector3d g(std::floor(q.x()), std::floor(q.y()), std::floor(q.z()));
   const double lo = -shift_;
   const double hi = kMortonMaxCoord - shift_;
   if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
   const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
-  const std::uint32_t b = band_.Rank(MortonEncode(ijk));
-  if (b == detail::KeyIndexHash::kNotFound) return nullptr;
-  *local = q - g;
-  return &blocks_[b];
+  const std::uint32_t i = band_.BrickIndex(MortonEncode(ijk.x() >> 2, ijk.y() >> 2, ijk.z() >> 2));
+  if (i == detail::KeyIndexHash::kNotFound) return nullptr;
+  const CornerBrick& b = corner_bricks_[i];
+  const Eigen::Vector3i l(ijk.x() & 3, ijk.y() & 3, ijk.z() & 3);
+  const int bit = (l.x() & 1) | (l.y() & 1) << 1 | (l.z() & 1) << 2 | (l.x() >> 1) << 3 | (l.y() >> 1) << 4 |
+                  (l.z() >> 1) << 5;
+  if (((b.mask >> bit) & 1) == 0) return nullptr;
+  *local = (q - g).cast<float>();
+  return b.value + l.x() + 5 * l.y() + 25 * l.z();
 }
 
 bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
                                 Eigen::Vector3d* gradient) const {
-  Eigen::Vector3d f;
-  const std::array<float, 8>* block = Locate(p_F, &f);
-  if (block == nullptr) return false;
-  double c[8];
-  for (int o = 0; o < 8; ++o) c[o] = static_cast<double>((*block)[static_cast<std::size_t>(o)]);
-  const double x = f.x(), y = f.y(), z = f.z();
+  Eigen::Vector3f f;
+  const float* v = Locate(p_F, &f);
+  if (v == nullptr) return false;
+  float c[8];
+  for (int o = 0; o < 8; ++o) c[o] = v[kCornerStep[o]];
+  const float x = f.x(), y = f.y(), z = f.z();
   // Along x on the four x-edges (y, z) = (0,0), (1,0), (0,1), (1,1).
-  const double e0 = c[1] - c[0], e1 = c[3] - c[2], e2 = c[5] - c[4], e3 = c[7] - c[6];
-  const double a0 = c[0] + x * e0, a1 = c[2] + x * e1, a2 = c[4] + x * e2, a3 = c[6] + x * e3;
-  const double b0 = a0 + y * (a1 - a0), b1 = a2 + y * (a3 - a2);
-  *distance = b0 + z * (b1 - b0);
+  const float e0 = c[1] - c[0], e1 = c[3] - c[2], e2 = c[5] - c[4], e3 = c[7] - c[6];
+  const float a0 = c[0] + x * e0, a1 = c[2] + x * e1, a2 = c[4] + x * e2, a3 = c[6] + x * e3;
+  const float b0 = a0 + y * (a1 - a0), b1 = a2 + y * (a3 - a2);
+  *distance = static_cast<double>(b0 + z * (b1 - b0));
   if (gradient != nullptr) {
-    const double ddx = (1 - z) * ((1 - y) * e0 + y * e1) + z * ((1 - y) * e2 + y * e3);
-    const double ddy = (1 - z) * (a1 - a0) + z * (a3 - a2);
-    const double ddz = b1 - b0;
-    *gradient = Eigen::Vector3d(ddx, ddy, ddz) * inv_s_;
+    const float ddx = (1 - z) * ((1 - y) * e0 + y * e1) + z * ((1 - y) * e2 + y * e3);
+    const float ddy = (1 - z) * (a1 - a0) + z * (a3 - a2);
+    const float ddz = b1 - b0;
+    *gradient = Eigen::Vector3d(static_cast<double>(ddx), static_cast<double>(ddy), static_cast<double>(ddz)) * inv_s_;
   }
   return true;
 }
 
 bool NarrowBandSdf::CellValue(const Eigen::Vector3d& p_F, double* distance) const {
-  Eigen::Vector3d f;
-  const std::array<float, 8>* block = Locate(p_F, &f);
-  if (block == nullptr) return false;
+  Eigen::Vector3f f;
+  const float* v = Locate(p_F, &f);
+  if (v == nullptr) return false;
   double sum = 0.0;
-  for (const float v : *block) sum += static_cast<double>(v);
+  for (const int step : kCornerStep) sum += static_cast<double>(v[step]);
   *distance = sum / 8.0;
   return true;
 }
@@ -392,7 +419,7 @@ std::size_t NarrowBandSdf::MemoryBytes() const {
          original_.capacity() * sizeof(std::uint32_t) +
          (tri_offsets_.capacity() + tri_indices_.capacity()) * sizeof(std::uint32_t) +
          surface_.MemoryBytes() + band_.MemoryBytes() +
-         blocks_.capacity() * sizeof(std::array<float, 8>);
+         corner_bricks_.capacity() * sizeof(CornerBrick);
 }
 
 }  // namespace occlude::collision

@@ -153,6 +153,12 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
     tree.stats_.seconds_explicit = SecondsSince(start);
   }
 
+  if (options.build_distance_bound && !oct.empty()) {
+    start = std::chrono::steady_clock::now();
+    tree.bound_ = DistanceBound::Build(tree.grid_);
+    tree.stats_.seconds_bound = SecondsSince(start);
+  }
+
   SphereTreeStats& st = tree.stats_;
   st.nodes = oct.num_nodes();
   st.leaves = oct.num_leaves();
@@ -171,6 +177,7 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
   st.bytes_grid = tree.grid_.MemoryBytes();
   st.bytes_octree = oct.MemoryBytes();
   st.bytes_explicit = tree.explicit_.MemoryBytes();
+  st.bytes_bound = tree.bound_.MemoryBytes();
   const io::TriangleMesh& m = *tree.mesh_;
   st.bytes_mesh = m.vertices.capacity() * sizeof(Eigen::Vector3d) +
                   m.triangles.capacity() * sizeof(Eigen::Vector3i) +

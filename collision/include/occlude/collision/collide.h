@@ -31,6 +31,12 @@ struct CollisionRequest {
   bool first_only = false;         ///< boolean query: stop at the first pair (pairs has <= 1)
   std::size_t max_node_tests = 0;  ///< work budget in sphere-pair tests; 0 = unlimited
   bool exact = false;              ///< refine the voxel pairs to triangle pairs within delta
+  /// Also prune a node whose sphere the other tree's DistanceBound proves
+  /// farther than delta's reach from every voxel of that tree (an O(1) test of
+  /// the node against the whole other tree, after the sphere test passed). The
+  /// pairs reported are the same; only the work changes. Ignored for a tree
+  /// built without its bound.
+  bool distance_bound = true;
 };
 
 /// A reported leaf pair: indices of surface voxels in a.grid() and b.grid().
@@ -58,6 +64,7 @@ struct CollisionResult {
   bool complete = true;         ///< false when the work budget stopped the descent early
   std::size_t node_tests = 0;   ///< sphere-pair tests performed
   std::size_t leaf_tests = 0;   ///< exact voxel-cube tests performed
+  std::size_t bound_tests = 0;  ///< distance-bound tests performed (request.distance_bound)
   std::vector<VoxelPair> pairs; ///< in traversal order (not sorted)
 
   // Filled when request.exact:
@@ -111,10 +118,19 @@ struct CellRequest {
   /// grown-cube test; above 0 a cell is reported as soon as its sphere (and slab)
   /// meets an A node of this level: fewer tests, more (still conservative) cells.
   int a_level = 0;
+  /// Descend B alone and prune each B node with A's DistanceBound instead of
+  /// descending A (a_level is then unused): a cell is reported unless the bound
+  /// proves its sphere farther than reach_mm from every voxel cube of A. Still
+  /// every point of B's surface within reach_mm of A's surface lies in a
+  /// reported cell (that point is in the cell's sphere, A's surface in A's voxel
+  /// cubes), with no A traversal at all; the cells may differ from the pair
+  /// descent's (no grown-cube test). Falls back to the pair descent when A has
+  /// no bound.
+  bool distance_bound = false;
 };
 struct CellResult {
   std::vector<std::uint32_t> cells_b;  ///< octree node indices of B, in traversal order
-  std::size_t node_tests = 0;
+  std::size_t node_tests = 0;          ///< sphere-pair tests, or bound tests (distance_bound)
   std::size_t leaf_tests = 0;
 };
 /// Thread-safe (per-thread scratch). Throws std::invalid_argument like Collide.

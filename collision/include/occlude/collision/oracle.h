@@ -58,6 +58,9 @@ struct OracleOptions {
   int sdf_dilation_voxels = 2;    ///< narrow band of the lower's distance field, in voxels
   int cell_level = 1;             ///< octree level of the upper cells evaluated as a unit
   int lower_level = 1;            ///< the broad phase descends the lower tree down to this level
+  /// Broad phase against the lower's DistanceBound (CellRequest::distance_bound):
+  /// the upper tree alone is descended, O(1) per node; false = pair descent.
+  bool distance_bound = true;
   std::optional<ArchFrame> arch;  ///< default: EstimateArchFrame with U as given
 };
 
@@ -140,10 +143,12 @@ class JawOracle {
   std::size_t MemoryBytes() const;
 
  private:
+  /// may_be_deep: some sample of the cell may lie inside the lower beyond the
+  /// field's band (only then is an unknown sample classified, O(log n)).
   void EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU, const OracleRequest& request,
-                    OracleResult* result) const;
+                    bool may_be_deep, OracleResult* result) const;
   void EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                     const OracleRequest& request, OracleResult* result) const;
+                     const OracleRequest& request, bool may_be_deep, OracleResult* result) const;
 
   OracleOptions options_;
   SphereTree lower_, upper_;

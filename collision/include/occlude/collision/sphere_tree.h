@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "occlude/collision/distance_bound.h"
 #include "occlude/collision/octree.h"
 #include "occlude/collision/voxel_grid.h"
 #include "occlude/io/triangle_mesh.h"
@@ -28,6 +29,9 @@ struct SphereTreeOptions {
   VoxelizeOptions voxelize;                        ///< voxel size and classification
   bool build_explicit = true;                      ///< precompute the saved IST
   SphereMode explicit_from = SphereMode::kOptimized;  ///< kSimple or kOptimized
+  /// Build the DistanceBound of the surface voxels (lets queries prune a node
+  /// of the other tree that is far from this whole tree in O(1)).
+  bool build_distance_bound = true;
 };
 
 /// Per-level figures of the paper (Figs. 7-9).
@@ -46,12 +50,18 @@ struct SphereTreeStats {
   double seconds_voxelize = 0.0;
   double seconds_octree = 0.0;
   double seconds_explicit = 0.0;
+  double seconds_bound = 0.0;
   std::size_t bytes_grid = 0;
   std::size_t bytes_octree = 0;
   std::size_t bytes_explicit = 0;
   std::size_t bytes_mesh = 0;
-  std::size_t total_bytes() const { return bytes_grid + bytes_octree + bytes_explicit + bytes_mesh; }
-  double total_seconds() const { return seconds_voxelize + seconds_octree + seconds_explicit; }
+  std::size_t bytes_bound = 0;
+  std::size_t total_bytes() const {
+    return bytes_grid + bytes_octree + bytes_explicit + bytes_mesh + bytes_bound;
+  }
+  double total_seconds() const {
+    return seconds_voxelize + seconds_octree + seconds_explicit + seconds_bound;
+  }
 };
 
 /// Explicit spheres, one 64-byte record per octree node (frame F, mm). The
@@ -92,6 +102,8 @@ class SphereTree {
   const VoxelGrid& grid() const { return grid_; }
   const Octree& octree() const { return octree_; }
   const ExplicitSpheres& explicit_spheres() const { return explicit_; }
+  /// Lower bound of the distance to this tree's voxels (empty when not built).
+  const DistanceBound& distance_bound() const { return bound_; }
   const SphereTreeStats& stats() const { return stats_; }
   double voxel_size_mm() const { return grid_.voxel_size_mm; }
   bool empty() const { return octree_.empty(); }
@@ -109,6 +121,7 @@ class SphereTree {
   VoxelGrid grid_;
   Octree octree_;
   ExplicitSpheres explicit_;
+  DistanceBound bound_;
   SphereTreeStats stats_;
 };
 
