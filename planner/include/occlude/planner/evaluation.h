@@ -1,0 +1,77 @@
+// What a pose is worth: contact, penetration (true maximum and the
+// outlier-robust measure the constraint uses, with the outliers listed),
+// per-tooth totals and the score, from one oracle query; plus the geometric
+// helpers of the planner (occlusal pivot, reference points for errors).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <vector>
+
+#include "occlude/collision/oracle.h"
+#include "occlude/io/triangle_mesh.h"
+#include "occlude/planner/request.h"
+
+namespace occlude::planner {
+
+/// A penetrating upper sample the constraint ignored (a scanner spike, presumably).
+struct OutlierPoint {
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  ///< position in L at the evaluated pose
+  double depth_mm = 0.0;                          ///< > 0
+  double area_mm2 = 0.0;
+  std::int32_t part = 0;                          ///< upper part (tooth) index
+};
+
+struct PoseEvaluation {
+  double contact_area_mm2 = 0.0;         ///< 0 <= d <= contact band
+  std::size_t contact_samples = 0;
+  double max_penetration_mm = 0.0;       ///< true deepest measured depth (>= 0)
+  double constrained_penetration_mm = 0.0;  ///< the measure the constraint compares (see PenetrationMeasure)
+  double penetration_area_mm2 = 0.0;
+  std::size_t deep_samples = 0;          ///< inside the lower beyond the measured range
+  std::vector<OutlierPoint> outliers;    ///< penetrating samples left out of the measure
+  double left_share = 0.0, right_share = 0.0, anterior_share = 0.0, posterior_share = 0.0;
+  double posterior_left_mm2 = 0.0, posterior_right_mm2 = 0.0;
+  std::vector<collision::PartTotals> parts;  ///< per upper part (tooth)
+  double score = 0.0;   ///< contact area minus the bilateral penalty (mm^2); higher is better
+  bool feasible = false;  ///< constrained_penetration_mm <= max_penetration_mm and no deep samples
+};
+
+/// One oracle query at X_LU (level of `stage`) turned into a PoseEvaluation under the
+/// request's band, penetration measure and score weights.
+PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X_LU,
+                            const PlanRequest& request);
+
+/// The robust penetration measure of a list of (depth > 0, area) samples with `deep` samples
+/// beyond the measured range (counted at `deep_depth_mm`, `deep_area_mm2` each): the deepest
+/// depth left after discarding the deepest samples whose total area fits the outlier budget.
+/// `outlier_index` (optional) receives the indices of the discarded samples.
+double RobustPenetration(const std::vector<std::pair<double, double>>& depth_area, std::size_t deep,
+                         double deep_depth_mm, double deep_area_mm2, double outlier_budget_mm2,
+                         std::vector<std::size_t>* outlier_index = nullptr);
+/// Outlier area budget of the request given the near-contact (contact + penetration) area.
+double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2);
+
+/// Centre of the upper arch's occlusal surface in L: the area-weighted centroid of the upper
+/// triangles (at X_LU) whose normals face the lower jaw (normal . -occlusal > 0.5) within the
+/// lowest `crown_depth_mm` along the occlusal axis. Falls back to the mesh centroid.
+Eigen::Vector3d OcclusalPivot(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU,
+                              const Eigen::Vector3d& occlusal_L, double crown_depth_mm = 4.0);
+
+/// Reference points of the upper arch in U for pose errors: the occlusal pivot, the most
+/// anterior occlusal point (incisors) and the most posterior occlusal points left and right
+/// (molars), taken on the occlusal-facing triangles at X_LU.
+std::vector<Eigen::Vector3d> ArchReferencePoints_U(const io::TriangleMesh& upper_U,
+                                                   const Eigen::Isometry3d& X_LU,
+                                                   const collision::ArchFrame& arch);
+
+/// Largest displacement (mm) of `points_U` between two poses, and their relative rotation (deg).
+struct PoseError {
+  double translation_mm = 0.0;
+  double rotation_deg = 0.0;
+};
+PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d& X_LU_b,
+                       const std::vector<Eigen::Vector3d>& points_U);
+
+}  // namespace occlude::planner

@@ -1,0 +1,110 @@
+// The settings of an occlusion search (PlanRequest) and the schedule of
+// oracles it runs on (OracleStage). Units: mm, mm^2 and degrees; frames as in
+// pose.h (parameters are relative to the start pose X_LU_start, about the pivot).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "occlude/collision/oracle.h"
+#include "occlude/planner/pose.h"
+
+namespace occlude::planner {
+
+/// The search methods; every one is a complete solver (see plan.h).
+enum class SolverKind {
+  kNloptLocal,    ///< "nlopt-local": constrained local search from each start (NlopLocalMethod)
+  kNloptGlobal,   ///< "nlopt-global": seeded sampling of the bounds, best seeds fed to nlopt-local
+  kCeres,         ///< "ceres": least squares on signed-distance residuals from each start
+  kCoarseToFine,  ///< "coarse-to-fine": sampling + least squares on each stage of the schedule
+};
+const char* ToString(SolverKind kind);
+/// Parses a solver name as printed by ToString; throws std::invalid_argument naming "solver"
+/// and listing the valid names.
+SolverKind SolverKindFromName(const std::string& name);
+
+/// The local NLopt method: COBYLA, or the augmented Lagrangian around BOBYQA / Sbplx.
+enum class NloptLocalMethod { kCobyla, kAuglagBobyqa, kAuglagSbplx };
+const char* ToString(NloptLocalMethod method);
+/// Parses "cobyla", "auglag-bobyqa" or "auglag-sbplx"; throws std::invalid_argument naming
+/// "nlopt_local".
+NloptLocalMethod NloptLocalMethodFromName(const std::string& name);
+
+/// How the penetration constraint treats the deepest samples (scanner spikes).
+enum class PenetrationMeasure {
+  kMax,           ///< the deepest sample: no outliers
+  kOutlierArea,   ///< the depth left after discarding the deepest samples up to outlier_area_mm2
+  kPercentile,    ///< the same with a budget of (100 - percentile) % of the near-contact area
+};
+const char* ToString(PenetrationMeasure measure);
+
+/// DOF order everywhere: 0-2 translation x, y, z (mm, in L), 3-5 rotation vector x, y, z (deg).
+inline constexpr int kNumDof = 6;
+
+struct PlanRequest {
+  /// Start (and reference) pose of U in L; parameters and bounds are relative to it.
+  Eigen::Isometry3d X_LU_start = Eigen::Isometry3d::Identity();
+  SolverKind solver = SolverKind::kCoarseToFine;
+  NloptLocalMethod nlopt_local = NloptLocalMethod::kCobyla;
+
+  double contact_band_mm = 0.1;       ///< contact: 0 <= d <= band
+  double max_penetration_mm = 0.05;   ///< constraint on the penetration measure
+  PenetrationMeasure penetration_measure = PenetrationMeasure::kOutlierArea;
+  double outlier_area_mm2 = 0.05;     ///< kOutlierArea: deepest area that may exceed the limit
+  double penetration_percentile = 99.0;  ///< kPercentile, in (0, 100]
+  /// Samples up to this distance above the lower surface attract the jaws (smooth contact score).
+  double attraction_range_mm = 0.6;
+  /// 0..1: subtracts this share of the left/right imbalance of posterior contact from the
+  /// score (0 = plain contact area).
+  double bilateral_posterior_weight = 0.0;
+
+  /// Bounds of the parameters relative to the start pose (lower <= 0 <= upper per DOF).
+  PoseParameters lower_bound{Eigen::Vector3d::Constant(-3.0), Eigen::Vector3d::Constant(-6.0)};
+  PoseParameters upper_bound{Eigen::Vector3d::Constant(3.0), Eigen::Vector3d::Constant(6.0)};
+  /// Locked DOFs keep their start value (order as kNumDof).
+  std::array<bool, kNumDof> locked{};
+  /// Rotation pivot in L at the start pose; default OcclusalPivot(upper at X_LU_start).
+  std::optional<Eigen::Vector3d> pivot_L;
+
+  std::uint32_t seed = 1;
+  int num_starts = 4;           ///< local solves (the start pose and sampled starts)
+  int num_global_samples = 48;  ///< global stage: poses sampled in the bounds (nlopt-global, coarse-to-fine)
+  int num_threads = 2;          ///< threads for the starts (std::thread); 1 = serial
+  int max_proposals = 3;        ///< K distinct occlusions returned (best first)
+  double distinct_translation_mm = 0.5;  ///< proposals differ by more than this at a reference
+  double distinct_rotation_deg = 2.0;    ///< point, or by more than this rotation
+  int max_evaluations = 600;    ///< oracle queries per local solve (per stage)
+};
+
+/// Throws std::invalid_argument naming the first invalid field of `request` and how to fix it.
+void ValidateRequest(const PlanRequest& request);
+
+/// One oracle of the schedule and the accuracy it is queried at.
+struct OracleStage {
+  const collision::JawOracle* oracle = nullptr;
+  collision::AccuracyLevel level = collision::AccuracyLevel::kSubVoxel;
+};
+/// Coarse to fine: the global stage uses the first entry, the local solvers the last;
+/// coarse-to-fine walks all of them in order.
+using OracleSchedule = std::vector<OracleStage>;
+
+/// Oracles built by the planner for a schedule (owns them; `stages` points into them).
+struct OwnedSchedule {
+  std::vector<std::unique_ptr<collision::JawOracle>> oracles;
+  OracleSchedule stages;
+};
+/// Builds one oracle per voxel size (coarse first, e.g. {0.8, 0.4}) and a schedule querying
+/// each at kSubVoxel, plus a last stage querying the finest at kExact when `exact_last`.
+/// Throws std::invalid_argument for an empty or non-positive voxel list.
+OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
+                            std::shared_ptr<const io::TriangleMesh> upper_U,
+                            const std::vector<double>& voxel_sizes_mm, bool exact_last,
+                            const collision::OracleOptions& base_options = {});
+
+}  // namespace occlude::planner

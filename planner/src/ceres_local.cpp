@@ -1,0 +1,211 @@
+// Ceres solver: least squares on the samples' signed distances (penetration
+// hinge + Cauchy-robust attraction into the band) with analytic Jacobians, on
+// a pose manifold whose update is a rigid motion about the pivot applied on
+// the left (translation, then rotation vector). An outer loop re-collects the
+// samples near the lower surface and settles the pose on the constraint.
+#include <ceres/ceres.h>
+
+#include <cmath>
+
+#include "least_squares_internal.h"
+
+namespace occlude::planner::detail {
+namespace {
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+
+Eigen::Matrix3d Exp(const Eigen::Vector3d& w) {
+  const double a = w.norm();
+  return a > 0 ? Eigen::AngleAxisd(a, w / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
+}
+
+Eigen::Vector3d Log(const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd aa(R);
+  return aa.axis() * aa.angle();
+}
+
+// Ambient z = (t mm, w rad) as in pose.h (relative to the reference, about the pivot).
+// Plus(z, delta): the rigid motion [translate delta_t] * [rotate Exp(delta_w) about the pivot]
+// applied on the left: t' = delta_t + Exp(delta_w) t, R' = Exp(delta_w) R(w).
+class PivotPoseManifold final : public ceres::Manifold {
+ public:
+  int AmbientSize() const override { return 6; }
+  int TangentSize() const override { return 6; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+    const Eigen::Map<const Vector6d> z(x), d(delta);
+    Eigen::Map<Vector6d> out(x_plus_delta);
+    const Eigen::Matrix3d E = Exp(d.tail<3>());
+    out.head<3>() = d.head<3>() + E * z.head<3>();
+    out.tail<3>() = Log(E * Exp(z.tail<3>()));
+    return true;
+  }
+  bool PlusJacobian(const double* x, double* jacobian) const override {
+    const Eigen::Map<const Vector6d> z(x);
+    Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> J(jacobian);
+    J.setZero();
+    J.topLeftCorner<3, 3>().setIdentity();
+    J.topRightCorner<3, 3>() = -Hat(z.head<3>());
+    J.bottomRightCorner<3, 3>() = LeftJacobianInverse(z.tail<3>());
+    return true;
+  }
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+    const Eigen::Map<const Vector6d> zy(y), zx(x);
+    Eigen::Map<Vector6d> out(y_minus_x);
+    const Eigen::Matrix3d E = Exp(zy.tail<3>()) * Exp(zx.tail<3>()).transpose();
+    out.tail<3>() = Log(E);
+    out.head<3>() = zy.head<3>() - E * zx.head<3>();
+    return true;
+  }
+  bool MinusJacobian(const double* x, double* jacobian) const override {
+    const Eigen::Map<const Vector6d> z(x);
+    Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> J(jacobian);
+    const Eigen::Matrix3d Jl = LeftJacobian(z.tail<3>());
+    J.setZero();
+    J.topLeftCorner<3, 3>().setIdentity();
+    J.topRightCorner<3, 3>() = Hat(z.head<3>()) * Jl;
+    J.bottomRightCorner<3, 3>() = Jl;
+    return true;
+  }
+};
+
+// One residual of one sample: the hinge (kind 0) or the attraction (kind 1).
+class SampleCost final : public ceres::SizedCostFunction<1, 6> {
+ public:
+  SampleCost(const SurfaceResiduals::Impl* model, std::size_t sample, int kind)
+      : model_(model), sample_(sample), kind_(kind) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Map<const Vector6d> z(parameters[0]);
+    double hinge = 0.0, attraction = 0.0;
+    Row6d jh, ja;
+    const bool want = jacobians != nullptr && jacobians[0] != nullptr;
+    model_->Residuals(sample_, z, &hinge, &attraction, want ? &jh : nullptr, want ? &ja : nullptr);
+    residuals[0] = kind_ == 0 ? hinge : attraction;
+    if (want) {
+      Eigen::Map<Row6d> jacobian(jacobians[0]);
+      jacobian = kind_ == 0 ? jh : ja;
+    }
+    return true;
+  }
+
+ private:
+  const SurfaceResiduals::Impl* model_;
+  std::size_t sample_;
+  int kind_;
+};
+
+// Closure along the occlusal axis u, as a nearly constant force: r = c (u . t + L) with a long
+// lever L, so r^2 ~ c^2 L^2 + 2 c^2 L (u . t): the jaw is pushed closed with force 2 c^2 L
+// (the deepest seat wins among poses of similar contact).
+class ClosureCost final : public ceres::SizedCostFunction<1, 6> {
+ public:
+  ClosureCost(const Eigen::Vector3d& u, double force) : u_(u), c_(std::sqrt(force / (2.0 * kLeverMm))) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Map<const Vector6d> z(parameters[0]);
+    residuals[0] = c_ * (u_.dot(z.head<3>()) + kLeverMm);
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      Eigen::Map<Row6d> jacobian(jacobians[0]);
+      jacobian << c_ * u_.transpose(), 0.0, 0.0, 0.0;
+    }
+    return true;
+  }
+
+ private:
+  static constexpr double kLeverMm = 100.0;
+  Eigen::Vector3d u_;
+  double c_;
+};
+
+}  // namespace
+
+LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
+                       const Vector6d& x0, int max_outer, int max_evaluations) {
+  const PlanRequest& req = *problem.request;
+  ResidualSettings settings;
+  settings.contact_band_mm = req.contact_band_mm;
+  settings.range_mm = std::max(req.attraction_range_mm, 1.5 * stage.oracle->lower_sdf().voxel_size_mm());
+  settings.range_mm = std::min(settings.range_mm, stage.oracle->lower_sdf().band_mm());
+  LocalResult result;
+  result.x = x0;
+  result.status = SolveStatus::kMaxEvaluations;
+  Vector6d x = x0;
+  bool locked_any = false;
+  std::vector<int> locked;
+  for (int i = 0; i < kNumDof; ++i) {
+    if (problem.upper[i] <= problem.lower[i]) locked.push_back(i);
+  }
+  locked_any = !locked.empty();
+  if (locked.size() == static_cast<std::size_t>(kNumDof)) {
+    result.status = SolveStatus::kConverged;
+    result.message = "all DOFs locked";
+    return result;
+  }
+  for (int outer = 0; outer < max_outer; ++outer) {
+    if (result.evaluations >= max_evaluations) break;
+    const SurfaceResiduals::Impl model(stage, samples, PoseOf(problem, x), problem.X_ref, problem.pivot_L, settings,
+                                       4000);
+    if (model.area.empty()) {
+      result.message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
+      break;
+    }
+    ceres::Problem::Options popts;
+    ceres::Problem lsq(popts);
+    Vector6d z = AmbientFromX(x);
+    for (std::size_t i = 0; i < model.area.size(); ++i) {
+      lsq.AddResidualBlock(new SampleCost(&model, i, 0), nullptr, z.data());
+      lsq.AddResidualBlock(new SampleCost(&model, i, 1),
+                           new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z.data());
+    }
+    const double closure_weight = settings.closure_weight;
+    if (closure_weight > 0.0 && problem.settle_dir.squaredNorm() > 0.0) {
+      double total_area = 0.0;
+      for (const double a : model.area) total_area += a;
+      lsq.AddResidualBlock(new ClosureCost(problem.settle_dir, closure_weight * total_area), nullptr, z.data());
+    }
+    if (locked_any) {
+      lsq.SetManifold(z.data(), new ceres::SubsetManifold(6, locked));
+    } else {
+      lsq.SetManifold(z.data(), new PivotPoseManifold);
+    }
+    const Vector6d lo = AmbientFromX(problem.lower), hi = AmbientFromX(problem.upper);
+    for (int i = 0; i < kNumDof; ++i) {
+      if (problem.upper[i] > problem.lower[i]) {
+        lsq.SetParameterLowerBound(z.data(), i, lo[i]);
+        lsq.SetParameterUpperBound(z.data(), i, hi[i]);
+      }
+    }
+    ceres::Solver::Options opts;
+    opts.linear_solver_type = ceres::DENSE_QR;
+    opts.max_num_iterations = 25;
+    opts.num_threads = 1;
+    opts.function_tolerance = 1e-7;
+    opts.parameter_tolerance = 1e-7;
+    opts.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(opts, &lsq, &summary);
+    result.evaluations += summary.num_residual_evaluations;
+    if (!z.allFinite() || summary.termination_type == ceres::FAILURE) {
+      result.status = SolveStatus::kFailed;
+      result.message = "ceres: " + summary.message;
+      break;
+    }
+    const Vector6d moved = Clamp(problem, XFromAmbient(z));
+    int settle_evals = 0;
+    const Vector6d settled = SettleOnSet(stage, samples, problem, moved, &settle_evals);
+    result.evaluations += settle_evals;
+    const double change = (settled - x).cwiseAbs().maxCoeff();
+    x = settled;
+    result.message = "ceres: " + summary.BriefReport();
+    if (change < 0.005) {
+      result.status = SolveStatus::kConverged;
+      break;
+    }
+  }
+  result.x = x;
+  return result;
+}
+
+}  // namespace occlude::planner::detail

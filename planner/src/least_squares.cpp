@@ -1,0 +1,141 @@
+// The least-squares model: per-sample signed distances of fixed upper samples
+// with analytic Jacobians (the oracle's distance gradient chained through the
+// pivot parameterization), used by the Ceres solver and checked in the tests.
+#include "occlude/planner/least_squares.h"
+
+#include <cmath>
+
+#include "least_squares_internal.h"
+
+namespace occlude::planner {
+namespace detail {
+namespace {
+constexpr double kRadPerDeg = M_PI / 180.0;
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+}  // namespace
+
+Eigen::Matrix3d LeftJacobian(const Eigen::Vector3d& w) {
+  const double t = w.norm();
+  const Eigen::Matrix3d W = Hat(w);
+  if (t < 1e-6) return Eigen::Matrix3d::Identity() + 0.5 * W + W * W / 6.0;
+  return Eigen::Matrix3d::Identity() + (1.0 - std::cos(t)) / (t * t) * W + (t - std::sin(t)) / (t * t * t) * W * W;
+}
+
+Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& w) {
+  const double t = w.norm();
+  const Eigen::Matrix3d W = Hat(w);
+  if (t < 1e-6) return Eigen::Matrix3d::Identity() - 0.5 * W + W * W / 12.0;
+  const double c = 1.0 / (t * t) - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t));
+  return Eigen::Matrix3d::Identity() - 0.5 * W + c * W * W;
+}
+
+Vector6d AmbientFromX(const Vector6d& x) {
+  Vector6d z = x;
+  z.tail<3>() *= kRadPerDeg;
+  return z;
+}
+
+Vector6d XFromAmbient(const Vector6d& z) {
+  Vector6d x = z;
+  x.tail<3>() /= kRadPerDeg;
+  return x;
+}
+}  // namespace detail
+
+SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSet& all,
+                             const Eigen::Isometry3d& X_LU_base, const Eigen::Isometry3d& X_LU_ref,
+                             const Eigen::Vector3d& p_LPivot, const ResidualSettings& settings_in,
+                             std::size_t max_samples)
+    : stage(stage_in), X_ref(X_LU_ref), pivot(p_LPivot), settings(settings_in) {
+  std::vector<std::size_t> near;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    double d = 0.0;
+    bool deep = false;
+    if (detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d, nullptr, &deep) &&
+        d <= settings.range_mm) {
+      near.push_back(i);
+    }
+  }
+  const std::size_t stride = max_samples > 0 ? std::max<std::size_t>(1, (near.size() + max_samples - 1) / max_samples) : 1;
+  for (std::size_t k = 0; k < near.size(); k += stride) {
+    const std::size_t i = near[k];
+    v_L.push_back(X_ref * all.p_U[i] - pivot);
+    area.push_back(all.area_mm2[i] * static_cast<double>(stride));
+  }
+}
+
+double SurfaceResiduals::Impl::Distance(std::size_t i, const Vector6d& z, Row6d* gradient) const {
+  const Eigen::Vector3d w = z.tail<3>();
+  const double angle = w.norm();
+  const Eigen::Matrix3d R = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
+                                      : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d Rv = R * v_L[i];
+  const Eigen::Vector3d q = pivot + z.head<3>() + Rv;
+  double d = 0.0;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  bool deep = false;
+  if (!detail::StageDistance(stage, q, std::max(settings.range_mm, 0.5), &d, &n, &deep)) {
+    // Outside the field: a constant (zero gradient), deep inside or far away.
+    d = deep ? -stage.oracle->lower_sdf().band_mm() : settings.range_mm + 1.0;
+    n.setZero();
+  }
+  if (gradient) {
+    gradient->head<3>() = n.transpose();
+    gradient->tail<3>() = Rv.cross(n).transpose() * detail::LeftJacobian(w);
+  }
+  return d;
+}
+
+void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double* hinge, double* attraction,
+                                       Row6d* j_hinge, Row6d* j_attraction) const {
+  Row6d g;
+  const double d = Distance(i, z, (j_hinge || j_attraction) ? &g : nullptr);
+  const double s = std::sqrt(area[i]);
+  const double wp = settings.penetration_weight * s;
+  *hinge = d < 0.0 ? wp * d : 0.0;
+  *attraction = d > settings.contact_band_mm ? s * (d - settings.contact_band_mm) : 0.0;
+  if (j_hinge) *j_hinge = d < 0.0 ? Row6d(wp * g) : Row6d::Zero();
+  if (j_attraction) *j_attraction = d > settings.contact_band_mm ? Row6d(s * g) : Row6d::Zero();
+}
+
+SurfaceResiduals::SurfaceResiduals(const OracleStage& stage, const Eigen::Isometry3d& X_LU_base,
+                                   const Eigen::Isometry3d& X_LU_ref, const Eigen::Vector3d& p_LPivot,
+                                   const ResidualSettings& settings, std::size_t max_samples) {
+  const detail::SampleSet all =
+      detail::OcclusalSamples(stage.oracle->upper_tree().mesh(), X_LU_base, stage.oracle->arch().occlusal_L,
+                              detail::StageSpacing(stage));
+  impl_ = std::make_unique<Impl>(stage, all, X_LU_base, X_LU_ref, p_LPivot, settings, max_samples);
+}
+
+SurfaceResiduals::~SurfaceResiduals() = default;
+SurfaceResiduals::SurfaceResiduals(SurfaceResiduals&&) noexcept = default;
+SurfaceResiduals& SurfaceResiduals::operator=(SurfaceResiduals&&) noexcept = default;
+
+int SurfaceResiduals::size() const { return static_cast<int>(2 * impl_->area.size()); }
+
+void SurfaceResiduals::Evaluate(const PoseParameters& params, Eigen::VectorXd* residuals,
+                                Eigen::MatrixXd* jacobian) const {
+  const Vector6d z = detail::AmbientFromX(detail::FromParameters(params));
+  const auto n = static_cast<Eigen::Index>(impl_->area.size());
+  residuals->resize(2 * n);
+  if (jacobian) jacobian->resize(2 * n, 6);
+  // Per degree instead of per radian for the rotation columns.
+  Row6d unit = Row6d::Ones();
+  unit.tail<3>() *= M_PI / 180.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Row6d jh, ja;
+    impl_->Residuals(static_cast<std::size_t>(i), z, &(*residuals)[2 * i], &(*residuals)[2 * i + 1],
+                     jacobian ? &jh : nullptr, jacobian ? &ja : nullptr);
+    if (jacobian) {
+      jacobian->row(2 * i) = jh.cwiseProduct(unit);
+      jacobian->row(2 * i + 1) = ja.cwiseProduct(unit);
+    }
+  }
+}
+
+}  // namespace occlude::planner

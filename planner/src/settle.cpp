@@ -1,0 +1,167 @@
+// The fast objective on a sample set (smooth contact score, robust
+// penetration) and the settle: a bracketing search along the occlusal axis for
+// the pose where the penetration measure just meets its limit.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "search_internal.h"
+
+namespace occlude::planner::detail {
+
+SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
+                          const Eigen::Isometry3d& X_LU, const Problem& problem) {
+  const PlanRequest& req = *problem.request;
+  const double band = req.contact_band_mm, range = req.attraction_range_mm;
+  const double reach = std::max(range, 0.5);
+  SetEvaluation e;
+  e.min_distance_mm = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, double>> pen;
+  double deep_area = 0.0, left = 0.0, right = 0.0, near_area = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
+    double d = 0.0;
+    bool deep = false;
+    if (!StageDistance(stage, p_L, reach, &d, nullptr, &deep)) {
+      if (deep) {
+        ++e.deep;
+        deep_area += samples.area_mm2[i];
+      }
+      continue;
+    }
+    e.min_distance_mm = std::min(e.min_distance_mm, d);
+    if (d > range) continue;
+    const double a = samples.area_mm2[i];
+    double k = 1.0;
+    if (d > band) {
+      const double s = (d - band) / (range - band);
+      k = (1.0 - s * s) * (1.0 - s * s);
+    }
+    if (d >= 0.0 && d <= band) e.contact_area_mm2 += a;
+    if (d <= band) near_area += a;
+    if (d < 0.0) {
+      pen.emplace_back(-d, a);
+      e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
+    }
+    e.smooth_score += a * k;
+    const Eigen::Vector3d rel = p_L - problem.arch.origin_L;
+    if (req.bilateral_posterior_weight > 0.0 && rel.dot(problem.arch.anterior_L) <= problem.arch.anterior_split_mm) {
+      (rel.dot(problem.arch.lateral_L) >= 0.0 ? left : right) += a * k;
+    }
+  }
+  e.smooth_score -= req.bilateral_posterior_weight * std::abs(left - right);
+  const double deep_depth = stage.oracle->lower_sdf().band_mm();
+  const double mean_area = e.deep > 0 ? deep_area / static_cast<double>(e.deep) : 0.0;
+  // A cluster stands for spacing^2 of surface; a budget below one cluster would make the
+  // coarse stages ignore the request's outlier handling, so allow at least one.
+  double budget = OutlierBudget(req, near_area);
+  if (budget > 0.0) budget = std::max(budget, 1.01 * samples.spacing_mm * samples.spacing_mm);
+  e.robust_penetration_mm = RobustPenetration(pen, e.deep, deep_depth, mean_area, budget);
+  if (e.deep > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
+  e.feasible = e.robust_penetration_mm <= req.max_penetration_mm;
+  return e;
+}
+
+namespace {
+
+// Range [lo, hi] of h such that Clamp leaves x + h * (settle_dir, 0) unchanged.
+void SettleRange(const Problem& problem, const Vector6d& x, double* lo, double* hi) {
+  *lo = -20.0;
+  *hi = 20.0;
+  for (int i = 0; i < 3; ++i) {
+    const double u = problem.settle_dir[i];
+    if (std::abs(u) < 1e-12) continue;
+    const double a = (problem.lower[i] - x[i]) / u, b = (problem.upper[i] - x[i]) / u;
+    *lo = std::max(*lo, std::min(a, b));
+    *hi = std::min(*hi, std::max(a, b));
+  }
+  *lo = std::min(*lo, 0.0);
+  *hi = std::max(*hi, 0.0);
+}
+
+// Generic settle: `measure(h)` returns (penetration measure, smallest known distance).
+template <typename Measure>
+double SettleOffset(const Problem& problem, const Vector6d& x, Measure measure, double first_step_mm,
+                    double tolerance_mm) {
+  const double limit = problem.request->max_penetration_mm;
+  double lo = 0.0, hi = 0.0;
+  SettleRange(problem, x, &lo, &hi);
+  if (problem.settle_dir.squaredNorm() == 0.0) return 0.0;
+  double closed = 0.0, open = 0.0;  // infeasible / feasible offsets
+  auto [pen0, dist0] = measure(0.0);
+  if (pen0 <= limit) {
+    // Close: jump by the known gap, else double the step, until infeasible.
+    double h = 0.0, step = first_step_mm, dist = dist0;
+    for (;;) {
+      const double jump = std::isfinite(dist) && dist > 0.1 ? dist - 0.05 : step;
+      const double next = std::max(lo, h - jump);
+      if (next >= h) return h;  // at the bound, still feasible
+      auto [pen, d] = measure(next);
+      if (pen > limit) {
+        closed = next;
+        open = h;
+        break;
+      }
+      h = next;
+      dist = d;
+      step *= 2.0;
+    }
+  } else {
+    double h = 0.0, step = first_step_mm;
+    for (;;) {
+      const double next = std::min(hi, h + step);
+      if (next <= h) return h;  // at the bound, still infeasible: least penetrating reachable
+      auto [pen, d] = measure(next);
+      (void)d;
+      if (pen <= limit) {
+        closed = h;
+        open = next;
+        break;
+      }
+      h = next;
+      step *= 2.0;
+    }
+  }
+  while (open - closed > tolerance_mm) {
+    const double mid = 0.5 * (open + closed);
+    (measure(mid).first > limit ? closed : open) = mid;
+  }
+  return open;
+}
+
+Vector6d Offset(const Problem& problem, const Vector6d& x, double h) {
+  Vector6d y = x;
+  y.head<3>() += h * problem.settle_dir;
+  return y;
+}
+
+}  // namespace
+
+Vector6d SettleOnSet(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
+                     const Vector6d& x, int* evaluations) {
+  const double h = SettleOffset(
+      problem, x,
+      [&](double offset) {
+        ++*evaluations;
+        const SetEvaluation e = EvaluateSet(stage, samples, PoseOf(problem, Offset(problem, x, offset)), problem);
+        return std::make_pair(e.robust_penetration_mm, e.min_distance_mm);
+      },
+      0.25, 0.003);
+  return Offset(problem, x, h);
+}
+
+Vector6d SettleOnOracle(const OracleStage& stage, const Problem& problem, const Vector6d& x,
+                        int* evaluations) {
+  const double h = SettleOffset(
+      problem, x,
+      [&](double offset) {
+        ++*evaluations;
+        const PoseEvaluation e = EvaluatePose(stage, PoseOf(problem, Offset(problem, x, offset)), *problem.request);
+        // Only step by known gaps within the oracle's reach.
+        return std::make_pair(e.constrained_penetration_mm, std::numeric_limits<double>::quiet_NaN());
+      },
+      0.02, 0.003);
+  return Offset(problem, x, h);
+}
+
+}  // namespace occlude::planner::detail
