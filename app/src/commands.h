@@ -38,6 +38,7 @@ inline CLI::Validator BandMm() { return MmBetween(0.0, true, 5.0, "a band in mm 
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);
 void AddCollideCommand(CLI::App& app);
+void AddReportCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
 
 }  // namespace occlude::app

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   occlude::app::AddSynthCommand(app);
   occlude::app::AddDemoCommand(app);
   occlude::app::AddCollideCommand(app);
+  occlude::app::AddReportCommand(app);
   occlude::app::AddBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,35 @@
+// The report's text outputs: metrics.json (contact and penetration totals, spots,
+// per-tooth table, settings, timings), pose.json (X_LU readable by ReadPoseFile,
+// plus translation/rotation about the pivot) and report.html (one self-contained
+// page: pose, metrics, maps as embedded base64 PNG, per-tooth table, settings).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "case_config.h"
+#include "report_analysis.h"
+#include "report_case.h"
+
+namespace occlude::app {
+
+struct ReportInputs {
+  const CaseConfig* config = nullptr;
+  const CaseJaws* jaws = nullptr;
+  const ReportAnalysis* analysis = nullptr;
+  std::string pose_source;  ///< "start pose of the config" or the pose file
+  /// (title, PNG bytes, file name) of each picture, in page order.
+  struct Picture {
+    std::string title, png, file;
+  };
+  std::vector<Picture> pictures;
+};
+
+std::string MetricsJson(const ReportInputs& in);
+std::string PoseJson(const ReportInputs& in);
+std::string ReportHtml(const ReportInputs& in);
+
+/// Standard base64 (RFC 4648, with padding).
+std::string Base64(const std::string& bytes);
+
+}  // namespace occlude::app

@@ -1,0 +1,240 @@
+// The report on the synthetic pair (5,000 triangles per jaw), checked by content:
+// at the ground-truth bite the contact colours lie on the known contact points
+// (projected into both occlusal maps) and the penetration colour appears nowhere;
+// pushed 0.2 mm into the lower jaw the penetration colour appears on both maps;
+// report.html embeds the pictures and tables; pose.json reads back; the command
+// writes every file, and bad inputs give one line, non-zero exit and no files.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "case_config.h"
+#include "pose_file.h"
+#include "report_analysis.h"
+#include "report_document.h"
+#include "occlude/io/synthetic_jaws.h"
+#include "report_images.h"
+#include "test_common.h"
+
+namespace occlude::test {
+namespace {
+
+using app::Arch;
+namespace render = app::render;
+
+// Fraction of truth contacts that must show a contact colour within kWindowPx:
+// a few contacts of the design sit on a steep wall, where the occlusal view
+// sees them edge-on.
+constexpr double kMinContactHitRate = 0.9;
+constexpr int kWindowPx = 3;
+// Pushed 0.2 mm into the lower jaw, penetration covers whole cusp tips: at least this many pixels.
+constexpr int kMinPenetrationPixels = 200;
+
+const std::string kSyntheticConfig = "[synthetic]\ntriangles = 5000\nseed = 1\n[report]\nimage_width_px = 900\n";
+
+struct Fixture {
+  app::CaseConfig config;
+  app::CaseJaws jaws;
+  app::ReportAnalysis truth, pushed;
+};
+
+const Fixture& Shared() {
+  static const Fixture* f = [] {
+    auto* x = new Fixture;
+    x->config = app::ParseCaseConfig(kSyntheticConfig, "synthetic.toml");
+    x->jaws = app::LoadCaseJaws(x->config);
+    const auto quiet = [](const std::string&) {};
+    x->truth = app::AnalyzePose(x->config, x->jaws, Eigen::Isometry3d::Identity(), quiet);
+    const Eigen::Isometry3d down(Eigen::Translation3d(0, -0.2, 0));
+    x->pushed = app::AnalyzePose(x->config, x->jaws, down, quiet);
+    return x;
+  }();
+  return *f;
+}
+
+render::MapScale Scale(const app::CaseConfig& c) {
+  return {c.report.map_max_mm, c.contact_band_mm, c.report.map_penetration_from_mm};
+}
+
+int CountInMap(const app::MapImage& m, bool (*pred)(render::Rgb)) {
+  int n = 0;
+  for (int y = m.map_y; y < m.map_y + m.map_height; ++y) {
+    for (int x = m.map_x; x < m.map_x + m.map_width; ++x) n += pred(m.image.At(x, y)) ? 1 : 0;
+  }
+  return n;
+}
+
+bool ContactNear(const app::MapImage& m, const Eigen::Vector3d& p_L) {
+  const Eigen::Vector2d px = m.view.ToPixel(p_L);
+  for (int dy = -kWindowPx; dy <= kWindowPx; ++dy) {
+    for (int dx = -kWindowPx; dx <= kWindowPx; ++dx) {
+      const int x = static_cast<int>(px.x()) + dx, y = static_cast<int>(px.y()) + dy;
+      if (x < m.map_x || y < m.map_y || x >= m.map_x + m.map_width || y >= m.map_y + m.map_height) continue;
+      if (render::IsContactColour(m.image.At(x, y))) return true;
+    }
+  }
+  return false;
+}
+
+TEST(ReportColours, ScaleConventions) {
+  const render::MapScale s;
+  EXPECT_TRUE(render::IsContactColour(render::DistanceColour(0.0, s)));
+  EXPECT_TRUE(render::IsContactColour(render::DistanceColour(0.1, s)));
+  EXPECT_FALSE(render::IsContactColour(render::DistanceColour(0.3, s)));
+  EXPECT_TRUE(render::IsPenetrationColour(render::DistanceColour(-0.05, s)));
+  EXPECT_FALSE(render::IsPenetrationColour(render::DistanceColour(-0.005, s)));  // within the display tolerance
+  for (double d = -0.005; d <= 1.0; d += 0.01) EXPECT_FALSE(render::IsPenetrationColour(render::DistanceColour(d, s))) << d;
+  EXPECT_EQ(render::DistanceColour(0.6, s), render::kFarColour);
+}
+
+TEST(ReportAnalysisTest, TruthPoseHasContactsOnBothSidesAndNoPenetration) {
+  const auto& a = Shared().truth;
+  EXPECT_LT(a.oracle.max_penetration_mm, io::kSyntheticContactToleranceMm);
+  EXPECT_GT(a.oracle.contact_area_mm2, 0.5);
+  EXPECT_GE(a.spots.size(), 8u);
+  EXPECT_GT(a.oracle.left_share, 0.2);
+  EXPECT_GT(a.oracle.right_share, 0.2);
+  EXPECT_EQ(a.teeth.size(), 28u);  // 14 teeth per arch
+  int upper_teeth_in_contact = 0;
+  for (const auto& t : a.teeth) upper_teeth_in_contact += t.upper && t.contact_area_mm2 > 0 ? 1 : 0;
+  EXPECT_GE(upper_teeth_in_contact, 6);
+  EXPECT_EQ(a.lower_vertex_mm.size(), Shared().jaws.lower_L->num_vertices());
+}
+
+TEST(ReportImages, TruthContactsShowTheContactColourAndNoPenetration) {
+  const Fixture& f = Shared();
+  ASSERT_FALSE(f.jaws.truth_contacts_L.empty());
+  for (const Arch arch : {Arch::kLower, Arch::kUpper}) {
+    const app::MapImage m = app::RenderContactMap(arch, f.jaws, f.truth, Scale(f.config), 900);
+    SCOPED_TRACE(arch == Arch::kLower ? "lower map" : "upper map");
+    int hits = 0;
+    for (const auto& p : f.jaws.truth_contacts_L) hits += ContactNear(m, p) ? 1 : 0;
+    EXPECT_GE(hits, kMinContactHitRate * static_cast<double>(f.jaws.truth_contacts_L.size()))
+        << hits << " of " << f.jaws.truth_contacts_L.size();
+    EXPECT_EQ(CountInMap(m, render::IsPenetrationColour), 0);
+    EXPECT_GT(CountInMap(m, render::IsContactColour), 50);
+  }
+}
+
+TEST(ReportImages, PushedIntoTheLowerJawShowsPenetration) {
+  const Fixture& f = Shared();
+  EXPECT_GT(f.pushed.oracle.max_penetration_mm, 0.15);
+  for (const Arch arch : {Arch::kLower, Arch::kUpper}) {
+    const app::MapImage m = app::RenderContactMap(arch, f.jaws, f.pushed, Scale(f.config), 900);
+    EXPECT_GT(CountInMap(m, render::IsPenetrationColour), kMinPenetrationPixels);
+  }
+}
+
+TEST(ReportDocumentTest, Base64) {
+  EXPECT_EQ(app::Base64(""), "");
+  EXPECT_EQ(app::Base64("M"), "TQ==");
+  EXPECT_EQ(app::Base64("Ma"), "TWE=");
+  EXPECT_EQ(app::Base64("Man"), "TWFu");
+}
+
+TEST(ReportDocumentTest, HtmlEmbedsPicturesAndTablesAndPoseReadsBack) {
+  const Fixture& f = Shared();
+  app::ReportInputs in;
+  in.config = &f.config;
+  in.jaws = &f.jaws;
+  in.analysis = &f.pushed;
+  in.pose_source = "test";
+  const std::string png =
+      app::EncodePng(app::RenderSideView(app::SideView::kFrontal, f.jaws, f.pushed, Scale(f.config), 400));
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  in.pictures = {{"Frontal view", png, "frontal.png"}};
+  const std::string html = app::ReportHtml(in);
+  EXPECT_NE(html.find("src=\"data:image/png;base64," + app::Base64(png).substr(0, 40)), std::string::npos);
+  for (const char* s : {"<h2>Pose of the upper jaw</h2>", "<h2>Contact</h2>", "<h2>Per tooth</h2>",
+                        "<h2>Settings</h2>", "maximum penetration", "EXCEEDS", "<td>14</td>"}) {
+    EXPECT_NE(html.find(s), std::string::npos) << s;
+  }
+  EXPECT_NE(app::MetricsJson(in).find("\"within_allowed\": false"), std::string::npos);
+  TempDir tmp;
+  std::ofstream(tmp / "pose.json") << app::PoseJson(in);
+  EXPECT_TRUE(app::ReadPoseFile(tmp / "pose.json").isApprox(f.pushed.X_LU, 1e-12));
+}
+
+// --- The command -------------------------------------------------------------
+
+struct CommandRun {
+  int exit_code = 0;
+  std::string output;
+};
+
+CommandRun Occlude(const std::string& args) {
+  CommandRun r;
+  FILE* pipe = popen((std::string(OCCLUDE_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string ReadText(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(ReportCommand, WritesEveryFile) {
+  TempDir tmp;
+  std::ofstream(tmp / "case.toml") << kSyntheticConfig << "[output]\nfolder = \"report\"\n";
+  std::ofstream(tmp / "pushed.json") << R"({"X_LU": [[1,0,0,0],[0,1,0,-0.2],[0,0,1,0],[0,0,0,1]]})";
+  const CommandRun r = Occlude("report " + (tmp / "case.toml").string() + " --pose " + (tmp / "pushed.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"report.html", "metrics.json", "pose.json", "upper_at_pose.stl", "lower_map.png",
+                           "upper_map.png", "frontal.png", "lateral.png"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(tmp / "report" / name)) << name;
+  }
+  const std::string metrics = ReadText(tmp / "report" / "metrics.json");
+  EXPECT_NE(metrics.find("\"within_allowed\": false"), std::string::npos);
+  EXPECT_NE(ReadText(tmp / "report" / "report.html").find("data:image/png;base64,"), std::string::npos);
+  const Eigen::Isometry3d X = app::ReadPoseFile(tmp / "report" / "pose.json");
+  EXPECT_NEAR(X.translation().y(), -0.2, 1e-12);
+}
+
+struct BadRun {
+  const char* name;
+  std::string config;  // written to {T}/case.toml ("" = no file)
+  std::string extra;   // more arguments ({T} = temporary folder)
+  const char* expected;
+};
+
+class ReportBadInputTest : public ::testing::TestWithParam<BadRun> {};
+
+TEST_P(ReportBadInputTest, OneLineNonZeroExitNoFiles) {
+  TempDir tmp;
+  if (!GetParam().config.empty()) std::ofstream(tmp / "case.toml") << GetParam().config;
+  std::ofstream(tmp / "scaled.json") << R"({"X_LU": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
+  std::string args = "report " + (tmp / "case.toml").string() + " --out " + (tmp / "out").string() + " " + GetParam().extra;
+  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;) args.replace(at, 3, tmp.path().string());
+  const CommandRun r = Occlude(args);
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("occlude: error: ", 0), 0u) << r.output;
+  std::error_code ec;
+  EXPECT_TRUE(!std::filesystem::exists(tmp / "out", ec) || std::filesystem::is_empty(tmp / "out", ec));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ReportBadInputTest,
+    ::testing::Values(
+        BadRun{"missing_config", "", "", "no such config file"},
+        BadRun{"unknown_key", kSyntheticConfig + "[contact]\nbnd_mm = 0.1\n", "", "did you mean 'contact.band_mm'"},
+        BadRun{"missing_mesh", "[lower]\nfile = \"nope.stl\"\n[upper]\nfile = \"nope.stl\"\n", "", "lower.file: no such file"},
+        BadRun{"band_over_5mm", kSyntheticConfig + "[contact]\nband_mm = 7\n", "", "contact.band_mm"},
+        BadRun{"non_rigid_pose_file", kSyntheticConfig, "--pose {T}/scaled.json", "not orthonormal"},
+        BadRun{"missing_pose_file", kSyntheticConfig, "--pose {T}/nope.json", "nope.json"}),
+    [](const ::testing::TestParamInfo<BadRun>& param_info) { return std::string(param_info.param.name); });
+
+}  // namespace
+}  // namespace occlude::test
