@@ -421,8 +421,11 @@ std::string BenchSummary(const std::vector<BenchRow>& rows) {
     char line[256];
     std::snprintf(line, sizeof line, "  %-40s %10.1f us at %+.2f mm", key.c_str(), w.us, w.offset);
     s << line;
-    if (std::isfinite(w.min_speedup))
-      s << "   >= " << Fixed(w.min_speedup, 1) << "x FCL " << w.reference;
+    if (std::isfinite(w.min_speedup)) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%.3g", w.min_speedup);
+      s << "   >= " << ratio << "x FCL " << w.reference;
+    }
     s << "\n";
   }
   return s.str();
