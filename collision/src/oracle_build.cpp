@@ -184,6 +184,32 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       node_leaf_end_[n] = node_leaf_end_[first + count - 1];
     }
   }
+  // Per cell (node of the query's cell level): the centre of its samples'
+  // bounding box and their largest distance from it, rounded up so that float
+  // storage never shrinks it (the query's cell filter).
+  {
+    const int level = std::min(options_.cell_level, oct.top_level);
+    const std::uint32_t begin = oct.level_begin[static_cast<std::size_t>(level)];
+    const std::uint32_t end = oct.level_end[static_cast<std::size_t>(level)];
+    cell_center_U_.assign(end - begin, Eigen::Vector3f::Zero());
+    cell_radius_.assign(end - begin, 0.0f);
+    for (std::uint32_t n = begin; n < end; ++n) {
+      const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
+      if (first == last) continue;
+      Eigen::Vector3d lo = sample_p_U_[first].cast<double>(), hi = lo;
+      for (auto i = first; i < last; ++i) {
+        lo = lo.cwiseMin(sample_p_U_[i].cast<double>());
+        hi = hi.cwiseMax(sample_p_U_[i].cast<double>());
+      }
+      const Eigen::Vector3f c = (0.5 * (lo + hi)).cast<float>();
+      double radius = 0.0;
+      for (auto i = first; i < last; ++i) {
+        radius = std::max(radius, (sample_p_U_[i].cast<double>() - c.cast<double>()).norm());
+      }
+      cell_center_U_[n - begin] = c;
+      cell_radius_[n - begin] = static_cast<float>(radius * (1.0 + 1e-6) + 1e-6);
+    }
+  }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
   for (const auto& part : up.parts) {
     const int t = part.tooth_number;
@@ -199,7 +225,8 @@ std::size_t JawOracle::MemoryBytes() const {
          sample_part_.capacity() * sizeof(std::int32_t) +
          voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +
-         (voxel_area_.capacity() + voxel_part_.capacity()) * 4 +
+         (voxel_area_.capacity() + voxel_part_.capacity() + cell_radius_.capacity()) * 4 +
+         cell_center_U_.capacity() * sizeof(Eigen::Vector3f) +
          (node_leaf_begin_.capacity() + node_leaf_end_.capacity()) * sizeof(std::uint32_t);
 }
 

@@ -144,28 +144,33 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
-  // A cell whose centre lies outside the lower farther than its radius plus
-  // the outer band holds no sample of interest: samples only count outside up
-  // to the contact band (or the residual band). The interpolated value at the
-  // centre is within 0.866 s of the exact signed distance (a convex
-  // combination of exact corner values of a 1-Lipschitz function), and so is
-  // every sample's value, hence the margin of 2 * 0.866 s.
+  // A cell is tested at the centre c of its samples' bounding box, r being
+  // their largest distance from c. The interpolated field is the trilinear
+  // interpolant of exact (1-Lipschitz) grid values, so each partial derivative
+  // is at most 1 in size: interp(p) >= interp(c) - |p - c|_1 >= interp(c) -
+  // sqrt(3) r. A cell with interp(c) above the outer band by sqrt(3) r holds
+  // no sample of interest (samples only count outside up to the contact band,
+  // or the residual band). The old bound, interp(c) above r + outer + 2 * 0.866
+  // s (interpolation error 0.866 s at c and at the sample), is kept when smaller.
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
-  const double cell_radius = kCubeCircumradius * upper_.edge(level);
+  const std::uint32_t level_begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
   const double outer = std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
-  const double skip_above = cell_radius + outer + 2.0 * kCubeCircumradius * sdf_.voxel_size_mm();
-  // A centre known to be at d > -band + radius + 0.866 s has every sample
-  // within the band or outside it (same Lipschitz argument): none is deep.
-  const double shallow_above = cell_radius + kCubeCircumradius * sdf_.voxel_size_mm() - sdf_.band_mm();
+  const double interp_error = kCubeCircumradius * sdf_.voxel_size_mm();
+  constexpr double kSqrt3 = 1.7320508075688772;
+  constexpr double kSlackMm = 1e-6;  // float rounding of the stored values
   for (const std::uint32_t node : found.cells_b) {
+    if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]]) continue;
+    const double r = static_cast<double>(cell_radius_[node - level_begin]);
     double d = 0.0;
-    const Eigen::Vector3d c_L = X_LU * upper_.CubeCenter(node, level);
+    const Eigen::Vector3d c_L = X_LU * cell_center_U_[node - level_begin].cast<double>();
     const bool known = sdf_.Interpolate(c_L, &d);
-    if (known && d > skip_above) continue;
-    // A centre beyond the band is farther than band_mm from the surface, so
-    // every sample (within the radius, below band_mm) is on the centre's side.
+    if (known && d > outer + std::min(kSqrt3 * r, r + 2.0 * interp_error) + kSlackMm) continue;
+    // A centre known to be at d > -band + r + 0.866 s has every sample within
+    // the band or outside it (same Lipschitz argument): none is deep. A centre
+    // beyond the band is farther than band_mm from the surface, so every
+    // sample (within r, below band_mm) is on the centre's side.
     const bool may_be_deep =
-        known ? d <= shallow_above
+        known ? d <= r + interp_error - sdf_.band_mm()
               : lower_.grid().Classify(lower_.grid().VoxelOf(c_L)) == VoxelClass::kInterior;
     EvaluateCell(node, X_LU, request, may_be_deep, result);
   }

@@ -165,6 +165,10 @@ class JawOracle {
   std::vector<std::int32_t> voxel_part_;
   // Per upper octree node: its leaf range [first, last) (voxel indices).
   std::vector<std::uint32_t> node_leaf_begin_, node_leaf_end_;
+  // Per node of the cell level (index: node - level_begin): centre of its
+  // samples' bounding box in U and their largest distance from it (0: none).
+  std::vector<Eigen::Vector3f> cell_center_U_;
+  std::vector<float> cell_radius_;
   std::vector<bool> part_is_anterior_tooth_;  ///< known from tooth numbers
   std::vector<bool> part_has_tooth_;
   double build_seconds_ = 0.0;
