@@ -1,5 +1,7 @@
-// Ceres solver: least squares on the samples' signed distances (penetration
-// hinge + Cauchy-robust attraction into the band) with analytic Jacobians, on
+// Ceres solver: least squares on the samples' signed distances (the seat
+// objective of least_squares.h: Huber penetration hinge beyond a small
+// allowance + Cauchy-robust attraction of every gap within the seat window,
+// Chang et al. 2010) with analytic Jacobians, on
 // a pose manifold whose update is a rigid motion about the pivot applied on
 // the left (translation, then rotation vector). An outer loop re-collects the
 // samples near the lower surface and settles the pose on the constraint.
@@ -124,10 +126,7 @@ class ClosureCost final : public ceres::SizedCostFunction<1, 6> {
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations) {
   const PlanRequest& req = *problem.request;
-  ResidualSettings settings;
-  settings.contact_band_mm = req.contact_band_mm;
-  settings.range_mm = std::max(req.attraction_range_mm, 1.5 * stage.oracle->lower_sdf().voxel_size_mm());
-  settings.range_mm = std::min(settings.range_mm, stage.oracle->lower_sdf().band_mm());
+  const ResidualSettings settings = SeatSettings(stage, req);
   LocalResult result;
   result.x = x0;
   result.status = SolveStatus::kMaxEvaluations;
@@ -155,7 +154,10 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     ceres::Problem lsq(popts);
     Vector6d z = AmbientFromX(x);
     for (std::size_t i = 0; i < model.area.size(); ++i) {
-      lsq.AddResidualBlock(new SampleCost(&model, i, 0), nullptr, z.data());
+      lsq.AddResidualBlock(
+          new SampleCost(&model, i, 0),
+          new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) * settings.penetration_huber_mm),
+          z.data());
       lsq.AddResidualBlock(new SampleCost(&model, i, 1),
                            new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z.data());
     }

@@ -1,6 +1,6 @@
 // Global stage: poses sampled uniformly in the bounds from a seeded generator,
-// each settled along the occlusal axis and scored on the sample set; the best
-// seed the local solvers.
+// each settled along the occlusal axis and ranked by the seat cost on the
+// sample set; the best seed the local solvers.
 #include <algorithm>
 #include <numeric>
 
@@ -26,7 +26,7 @@ std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& sam
     const SetEvaluation e = EvaluateSet(stage, samples, PoseOf(problem, x), problem);
     ++*evaluations;
     poses.push_back(x);
-    scores.push_back(e.feasible ? e.smooth_score : -1.0 - e.robust_penetration_mm);
+    scores.push_back(-e.seat_cost);
   }
   std::vector<std::size_t> order(poses.size());
   std::iota(order.begin(), order.end(), std::size_t{0});

@@ -47,6 +47,23 @@ Vector6d XFromAmbient(const Vector6d& z) {
 }
 }  // namespace detail
 
+double SeatSampleCost(double d, double area_mm2, bool attract, const ResidualSettings& settings) {
+  double rho = 0.0;
+  if (attract && d > 0.0) {
+    // Cauchy: b^2 log(1 + s / b^2), s = a m^2, b^2 = c^2 a.
+    const double m = std::min(d, settings.window_mm), c2 = settings.attraction_scale_mm * settings.attraction_scale_mm;
+    rho += c2 * area_mm2 * std::log1p(m * m / c2);
+  }
+  const double e = -(d + settings.penetration_allowance_mm);
+  if (e > 0.0) {
+    // Huber: s if s <= b^2 else 2 b sqrt(s) - b^2, s = w^2 a e^2, b = w sqrt(a) h.
+    const double w2a = settings.penetration_weight * settings.penetration_weight * area_mm2;
+    const double h = settings.penetration_huber_mm;
+    rho += e <= h ? w2a * e * e : w2a * (2.0 * h * e - h * h);
+  }
+  return 0.5 * rho;
+}
+
 SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSet& all,
                              const Eigen::Isometry3d& X_LU_base, const Eigen::Isometry3d& X_LU_ref,
                              const Eigen::Vector3d& p_LPivot, const ResidualSettings& settings_in,
@@ -66,6 +83,7 @@ SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSe
     const std::size_t i = near[k];
     v_L.push_back(X_ref * all.p_U[i] - pivot);
     area.push_back(all.area_mm2[i] * static_cast<double>(stride));
+    attract.push_back(all.facing[i] >= settings.attraction_min_facing);
   }
 }
 
@@ -97,10 +115,12 @@ void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double*
   const double d = Distance(i, z, (j_hinge || j_attraction) ? &g : nullptr);
   const double s = std::sqrt(area[i]);
   const double wp = settings.penetration_weight * s;
-  *hinge = d < 0.0 ? wp * d : 0.0;
-  *attraction = d > settings.contact_band_mm ? s * (d - settings.contact_band_mm) : 0.0;
-  if (j_hinge) *j_hinge = d < 0.0 ? Row6d(wp * g) : Row6d::Zero();
-  if (j_attraction) *j_attraction = d > settings.contact_band_mm ? Row6d(s * g) : Row6d::Zero();
+  const double e = d + settings.penetration_allowance_mm;  // < 0: beyond the allowance
+  const bool attracted = attract[i] && d > 0.0 && d < settings.window_mm;
+  *hinge = e < 0.0 ? wp * e : 0.0;
+  *attraction = (!attract[i] || d <= 0.0) ? 0.0 : s * std::min(d, settings.window_mm);
+  if (j_hinge) *j_hinge = e < 0.0 ? Row6d(wp * g) : Row6d::Zero();
+  if (j_attraction) *j_attraction = attracted ? Row6d(s * g) : Row6d::Zero();
 }
 
 SurfaceResiduals::SurfaceResiduals(const OracleStage& stage, const Eigen::Isometry3d& X_LU_base,

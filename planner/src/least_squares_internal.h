@@ -31,6 +31,7 @@ struct SurfaceResiduals::Impl {
   ResidualSettings settings;
   std::vector<Eigen::Vector3d> v_L;  ///< X_ref * p_U - pivot, per sample
   std::vector<double> area;
+  std::vector<bool> attract;  ///< occlusal-facing: takes part in the attraction
 };
 
 namespace detail {

@@ -1,7 +1,7 @@
-// NLopt local search: maximize the smooth contact score of the sample set
-// subject to the robust penetration measure <= limit, over the free DOFs
-// (COBYLA, or the augmented Lagrangian around BOBYQA / Sbplx), keeping the
-// best feasible point seen (COBYLA may end slightly outside the constraint).
+// NLopt local search: minimize the seat cost of the sample set (the same
+// objective as the Ceres residuals: robust attraction of all gaps within the
+// seat window plus the penetration penalty) over the free DOFs with COBYLA,
+// BOBYQA or Sbplx, then settle the best point along the occlusal axis.
 #include <nlopt.hpp>
 
 #include <algorithm>
@@ -23,16 +23,10 @@ struct LocalState {
   const Problem* problem = nullptr;
   std::vector<int> free;  // indices of free DOFs
   Vector6d x0 = Vector6d::Zero();  // values of the locked DOFs
-  double score_scale = 1.0;
+  double cost_scale = 1.0;
   int evaluations = 0;
-  // Cache of the last evaluation (objective and constraint ask for the same point).
-  std::vector<double> last_y;
-  SetEvaluation last;
-  // Best points.
-  Vector6d best_feasible = Vector6d::Zero();
-  double best_feasible_score = -std::numeric_limits<double>::infinity();
-  Vector6d least_penetrating = Vector6d::Zero();
-  double least_penetration = std::numeric_limits<double>::infinity();
+  Vector6d best = Vector6d::Zero();
+  double best_cost = std::numeric_limits<double>::infinity();
 };
 
 double Scale(int dof) { return dof < 3 ? kTranslationScaleMm : kRotationScaleDeg; }
@@ -43,51 +37,30 @@ Vector6d ToX(const LocalState& s, const std::vector<double>& y) {
   return x;
 }
 
-const SetEvaluation& Evaluate(LocalState& s, const std::vector<double>& y) {
-  if (y == s.last_y) return s.last;
+double Cost(LocalState& s, const std::vector<double>& y) {
   const Vector6d x = ToX(s, y);
   ++s.evaluations;
-  s.last_y = y;
-  if (!Finite(x)) {
-    s.last = SetEvaluation{};
-    s.last.robust_penetration_mm = 1e3;
-    return s.last;
+  if (!Finite(x)) return std::numeric_limits<double>::max();
+  const double cost = EvaluateSet(*s.stage, *s.samples, PoseOf(*s.problem, x), *s.problem).seat_cost;
+  if (cost < s.best_cost) {
+    s.best_cost = cost;
+    s.best = x;
   }
-  s.last = EvaluateSet(*s.stage, *s.samples, PoseOf(*s.problem, x), *s.problem);
-  if (s.last.feasible && s.last.smooth_score > s.best_feasible_score) {
-    s.best_feasible_score = s.last.smooth_score;
-    s.best_feasible = x;
-  }
-  if (s.last.robust_penetration_mm < s.least_penetration) {
-    s.least_penetration = s.last.robust_penetration_mm;
-    s.least_penetrating = x;
-  }
-  return s.last;
+  return cost;
 }
 
 double Objective(const std::vector<double>& y, std::vector<double>& /*grad*/, void* data) {
   auto& s = *static_cast<LocalState*>(data);
-  return -Evaluate(s, y).smooth_score / s.score_scale;
-}
-
-double Constraint(const std::vector<double>& y, std::vector<double>& /*grad*/, void* data) {
-  auto& s = *static_cast<LocalState*>(data);
-  const double limit = s.problem->request->max_penetration_mm;
-  return (Evaluate(s, y).robust_penetration_mm - limit) / 0.05;
+  return Cost(s, y) / s.cost_scale;
 }
 
 nlopt::opt MakeOptimizer(NloptLocalMethod method, unsigned n, int max_evaluations) {
-  if (method == NloptLocalMethod::kCobyla) {
-    nlopt::opt opt(nlopt::LN_COBYLA, n);
-    opt.set_maxeval(max_evaluations);
-    return opt;
-  }
-  nlopt::opt opt(nlopt::AUGLAG, n);
-  nlopt::opt local(method == NloptLocalMethod::kAuglagBobyqa ? nlopt::LN_BOBYQA : nlopt::LN_SBPLX, n);
-  local.set_xtol_abs(1e-3);
-  local.set_ftol_rel(1e-6);
-  local.set_maxeval(std::max(20, max_evaluations / 4));
-  opt.set_local_optimizer(local);
+  // The penetration is a penalty of the seat cost (no constraint), so the AUGLAG variants
+  // reduce to their subsidiary methods.
+  const nlopt::algorithm a = method == NloptLocalMethod::kCobyla        ? nlopt::LN_COBYLA
+                             : method == NloptLocalMethod::kAuglagBobyqa ? nlopt::LN_BOBYQA
+                                                                         : nlopt::LN_SBPLX;
+  nlopt::opt opt(a, n);
   opt.set_maxeval(max_evaluations);
   return opt;
 }
@@ -120,16 +93,14 @@ LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const
     y[k] = std::clamp(x0[i] / Scale(i), lb[k], ub[k]);
     step[k] = 0.3;
   }
-  const SetEvaluation& start = Evaluate(s, y);
-  s.score_scale = std::max(1.0, start.smooth_score);
+  s.cost_scale = std::max(1e-6, Cost(s, y));
   nlopt::opt opt = MakeOptimizer(problem.request->nlopt_local, n, max_evaluations);
   opt.set_lower_bounds(lb);
   opt.set_upper_bounds(ub);
   opt.set_initial_step(step);
-  opt.set_xtol_abs(1e-3);
-  opt.set_ftol_rel(1e-7);
+  opt.set_xtol_abs(3e-3);  // 3 um / 0.006 deg
+  opt.set_ftol_rel(1e-5);
   opt.set_min_objective(Objective, &s);
-  opt.add_inequality_constraint(Constraint, &s, 1e-3);
   double f = 0.0;
   try {
     const nlopt::result r = opt.optimize(y, f);
@@ -142,13 +113,13 @@ LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const
     result.status = SolveStatus::kFailed;
     result.message = std::string("nlopt failed: ") + e.what();
   }
-  result.evaluations = s.evaluations;
-  if (std::isfinite(s.best_feasible_score)) {
-    result.x = s.best_feasible;
-  } else {
-    result.x = s.least_penetrating;
+  // Seat the best point along the occlusal axis on the penetration measure.
+  int settle_evals = 0;
+  result.x = SettleOnSet(stage, samples, problem, s.best, &settle_evals);
+  result.evaluations = s.evaluations + settle_evals;
+  if (!EvaluateSet(stage, samples, PoseOf(problem, result.x), problem).feasible) {
     result.status = SolveStatus::kInfeasible;
-    result.message += "; no feasible point seen";
+    result.message += "; no feasible point within the bounds";
   }
   return result;
 }

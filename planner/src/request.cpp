@@ -73,6 +73,12 @@ void ValidateRequest(const PlanRequest& r) {
   if (!finite_pos(r.attraction_range_mm) || r.attraction_range_mm <= r.contact_band_mm) {
     fail("attraction_range_mm: must be finite and above contact_band_mm (default 0.6)");
   }
+  if (!finite_pos(r.seat_window_mm)) fail("seat_window_mm: must be finite and > 0 (default 1.0)");
+  if (!finite_pos(r.seat_scale_mm)) fail("seat_scale_mm: must be finite and > 0 (default 0.3)");
+  if (!(std::isfinite(r.seat_penetration_allowance_mm) && r.seat_penetration_allowance_mm >= 0.0)) {
+    fail("seat_penetration_allowance_mm: must be finite and >= 0 (default 0.02)");
+  }
+  if (!(r.seat_min_facing >= -1.0 && r.seat_min_facing <= 1.0)) fail("seat_min_facing: must be in [-1, 1] (default 0.6)");
   if (!(r.bilateral_posterior_weight >= 0.0 && r.bilateral_posterior_weight <= 1.0)) {
     fail("bilateral_posterior_weight: must be in [0, 1]");
   }

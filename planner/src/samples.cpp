@@ -20,6 +20,7 @@ namespace {
 
 struct Cluster {
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // area-weighted
   double area = 0.0;
   std::int32_t part = 0;
   std::uint32_t order = 0;  // first insertion, for a deterministic output order
@@ -47,7 +48,7 @@ SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing_mm)));
     const double area = 0.5 * n.norm() / (k * k);
-    const Eigen::Vector3d u = (b - a) / k, w = (c - a) / k;
+    const Eigen::Vector3d u = (b - a) / k, w = (c - a) / k, unit_n = n.normalized();
     auto add = [&](const Eigen::Vector3d& p) {
       Cluster& cl = cells[CellKey(p, spacing_mm)];
       if (cl.area == 0.0) {
@@ -55,6 +56,7 @@ SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry
         cl.part = upper_U.triangle_part.empty() ? 0 : upper_U.triangle_part[t];
       }
       cl.weighted += area * p;
+      cl.normal += area * unit_n;
       cl.area += area;
     };
     for (int i = 0; i < k; ++i) {
@@ -73,6 +75,8 @@ SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry
     set.p_U.push_back(cl->weighted / cl->area);
     set.area_mm2.push_back(cl->area);
     set.part.push_back(cl->part);
+    const double nn = cl->normal.norm();
+    set.facing.push_back(nn > 0.0 ? cl->normal.dot(down_U) / nn : 0.0);
   }
   return set;
 }

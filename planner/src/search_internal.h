@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "occlude/planner/least_squares.h"
 #include "occlude/planner/plan.h"
 
 namespace occlude::planner::detail {
@@ -25,6 +26,9 @@ struct SampleSet {
   std::vector<Eigen::Vector3d> p_U;
   std::vector<double> area_mm2;
   std::vector<std::int32_t> part;
+  /// Cosine between the cluster's mean normal and the direction towards the lower (at the
+  /// pose the set was built at): the seat attraction acts on occlusal-facing samples only.
+  std::vector<double> facing;
   double spacing_mm = 0.0;
   std::size_t size() const { return p_U.size(); }
 };
@@ -60,8 +64,13 @@ PoseParameters ToParameters(const Vector6d& x);
 Vector6d FromParameters(const PoseParameters& p);
 bool Finite(const Vector6d& x);
 
+/// The seat objective's settings for a stage: the request's window (within the field's band),
+/// scale and allowance.
+ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& request);
+
 /// Evaluation of a sample set at a pose (fast, approximate: the solvers' objective).
 struct SetEvaluation {
+  double seat_cost = 0.0;      ///< the seat objective (SeatSampleCost summed; lower is better)
   double smooth_score = 0.0;   ///< attraction-weighted area minus the bilateral penalty
   double contact_area_mm2 = 0.0;
   double robust_penetration_mm = 0.0;
@@ -87,14 +96,14 @@ struct LocalResult {
   std::string message;
   int evaluations = 0;
 };
-/// NLopt: maximize the smooth score subject to the penetration measure (COBYLA or AUGLAG).
+/// NLopt: minimize the seat cost of the set (COBYLA, BOBYQA or Sbplx), then settle.
 LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_evaluations);
 /// Ceres: least squares on the samples' signed distances (outer loop re-collects samples).
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations);
 /// Global stage: `count` poses sampled uniformly in the bounds (seeded), each settled and
-/// scored on the set; returns them best first.
+/// ranked by the seat cost on the set; returns them best first.
 std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& samples,
                                   const Problem& problem, int count, std::uint32_t seed,
                                   int* evaluations);

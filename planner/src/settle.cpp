@@ -9,11 +9,25 @@
 
 namespace occlude::planner::detail {
 
+ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& request) {
+  ResidualSettings s;
+  s.contact_band_mm = request.contact_band_mm;
+  s.penetration_allowance_mm = request.seat_penetration_allowance_mm;
+  s.attraction_scale_mm = request.seat_scale_mm;
+  s.attraction_min_facing = request.seat_min_facing;
+  // Distances are known within the field's band only.
+  s.window_mm = std::min(request.seat_window_mm, stage.oracle->lower_sdf().band_mm());
+  s.range_mm = s.window_mm;
+  return s;
+}
+
 SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
                           const Eigen::Isometry3d& X_LU, const Problem& problem) {
   const PlanRequest& req = *problem.request;
   const double band = req.contact_band_mm, range = req.attraction_range_mm;
-  const double reach = std::max(range, 0.5);
+  const ResidualSettings seat = SeatSettings(stage, req);
+  const double reach = std::max({range, seat.window_mm, 0.5});
+  const double deep_distance = -stage.oracle->lower_sdf().band_mm();
   SetEvaluation e;
   e.min_distance_mm = std::numeric_limits<double>::infinity();
   std::vector<std::pair<double, double>> pen;
@@ -23,12 +37,16 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
     double d = 0.0;
     bool deep = false;
     if (!StageDistance(stage, p_L, reach, &d, nullptr, &deep)) {
+      // As the residual model sees them: deep inside, or beyond the window.
+      e.seat_cost += SeatSampleCost(deep ? deep_distance : seat.window_mm, samples.area_mm2[i],
+                                    samples.facing[i] >= seat.attraction_min_facing, seat);
       if (deep) {
         ++e.deep;
         deep_area += samples.area_mm2[i];
       }
       continue;
     }
+    e.seat_cost += SeatSampleCost(d, samples.area_mm2[i], samples.facing[i] >= seat.attraction_min_facing, seat);
     e.min_distance_mm = std::min(e.min_distance_mm, d);
     if (d > range) continue;
     const double a = samples.area_mm2[i];

@@ -6,6 +6,7 @@
 //   occlude_plan_measure <case folder | synthetic> <solver> [runs=10] [translation_mm=2]
 //                        [rotation_deg=3] [voxels=0.8,0.4] [exact=0|1] [starts=1] [threads=1]
 #include <algorithm>
+#include <memory>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -73,6 +74,27 @@ int main(int argc, char** argv) {
                 p.params.translation_mm.norm(), p.evaluation.max_penetration_mm,
                 p.evaluation.constrained_penetration_mm, p.evaluation.contact_area_mm2, p.evaluation.outliers.size());
   }
+  // Diagnostic (OCCLUDE_MEASURE_REVERSE=1): the collision check is one-sided (upper samples in
+  // the lower's field); a swapped oracle measures lower samples in the upper's field.
+  std::unique_ptr<collision::JawOracle> reverse;
+  if (std::getenv("OCCLUDE_MEASURE_REVERSE")) {
+    collision::OracleOptions o;
+    o.voxel_size_mm = voxels.back();
+    reverse = std::make_unique<collision::JawOracle>(upper, lower, o);
+  }
+  auto reverse_pen = [&](const Eigen::Isometry3d& X_LU, double* area) {
+    collision::OracleRequest q;
+    q.level = collision::AccuracyLevel::kSubVoxel;
+    collision::OracleResult r;
+    reverse->Query(X_LU.inverse(), q, &r);
+    *area = r.penetration_area_mm2;
+    return r.max_penetration_mm;
+  };
+  if (reverse) {
+    double a = 0.0;
+    const double p = reverse_pen(X_true, &a);
+    std::printf("reverse check at the truth: lower in upper max %.3f mm, area %.3f mm2\n", p, a);
+  }
   std::printf("run  err_mm  err_deg  maxpen  conspen  contact  cpu_s   evals  status\n");
   std::vector<double> et, er, cpu;
   int success = 0;
@@ -92,6 +114,10 @@ int main(int argc, char** argv) {
     req.num_starts = starts;
     if (const char* mp = std::getenv("OCCLUDE_MEASURE_MAXPEN")) req.max_penetration_mm = std::atof(mp);
     if (const char* ar = std::getenv("OCCLUDE_MEASURE_RANGE")) req.attraction_range_mm = std::atof(ar);
+    if (const char* sw = std::getenv("OCCLUDE_MEASURE_SEAT")) {  // window,scale,allowance (mm)
+      std::sscanf(sw, "%lf,%lf,%lf", &req.seat_window_mm, &req.seat_scale_mm, &req.seat_penetration_allowance_mm);
+    }
+    if (const char* fc = std::getenv("OCCLUDE_MEASURE_FACING")) req.seat_min_facing = std::atof(fc);
     req.num_threads = threads;
     req.seed = static_cast<std::uint32_t>(run + 1);
     const planner::PlanResult res = planner::Plan(schedule.stages, req);
@@ -104,6 +130,11 @@ int main(int argc, char** argv) {
     std::printf("%3d  %6.3f  %7.3f  %6.3f  %7.3f  %7.2f  %6.2f  %6d  %s\n", run, e.translation_mm, e.rotation_deg,
                 best.evaluation.max_penetration_mm, best.evaluation.constrained_penetration_mm,
                 best.evaluation.contact_area_mm2, res.cpu_seconds, res.total_evaluations, planner::ToString(best.status));
+    if (reverse) {
+      double a = 0.0;
+      const double p = reverse_pen(best.X_LU, &a);
+      std::printf("     reverse check: lower in upper max %.3f mm, area %.3f mm2\n", p, a);
+    }
     if (std::getenv("OCCLUDE_MEASURE_VERBOSE")) {
       const planner::PoseParameters d = planner::DecomposePose(best.X_LU, pivot_true, X_true);
       std::printf("     delta t %s  r %s  (occlusal %s)\n", Fmt(d.translation_mm).c_str(), Fmt(d.rotation_deg).c_str(),

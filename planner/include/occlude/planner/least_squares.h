@@ -3,10 +3,14 @@
 // (a penetration hinge and an attraction into the contact band) and their
 // analytic Jacobian with respect to the pose parameters.
 //
-// Per sample i (area a_i, signed distance d_i at the pose):
-//   hinge      r = w_pen * sqrt(a_i) * min(0, d_i)
-//   attraction r = sqrt(a_i) * max(0, d_i - band)   (a Cauchy loss of scale `attraction_scale_mm`
-//                                                    is applied by the solver, not here)
+// The seat objective (Chang, Xia, Gateno et al., IEEE TMI 2010: minimize the distance between
+// the opposing occlusal surfaces under the no-collision constraint). Per sample i (area a_i,
+// signed distance d_i at the pose):
+//   hinge      r = w_pen * sqrt(a_i) * min(0, d_i + allowance)   (Huber loss of scale
+//                                                    w_pen sqrt(a_i) huber_mm: spikes push linearly)
+//   attraction r = sqrt(a_i) * clamp(d_i, 0, window)  (Cauchy loss of scale
+//                                                    attraction_scale_mm sqrt(a_i))
+// Losses are applied by the solver, not here; SeatCost() gives the same total cost.
 // Jacobians come from the oracle's distance gradients (d d / d pose is n^T [I, -(p - pivot)x]
 // for the update about the pivot) chained through the parameterization of pose.h.
 #pragma once
@@ -22,14 +26,24 @@
 namespace occlude::planner {
 
 struct ResidualSettings {
-  double contact_band_mm = 0.1;
+  double contact_band_mm = 0.1;      ///< (reported contact only; not part of the residuals)
   double penetration_weight = 20.0;  ///< w_pen
-  double attraction_scale_mm = 0.15; ///< Cauchy scale of the attraction (solver side)
-  double range_mm = 0.6;             ///< samples with d <= range at the base pose take part
+  double penetration_allowance_mm = 0.02;  ///< hinge starts beyond this depth
+  double penetration_huber_mm = 0.1;  ///< Huber scale of the hinge, as a depth (solver side)
+  double attraction_scale_mm = 0.3;  ///< Cauchy scale of the attraction (solver side)
+  double window_mm = 1.0;            ///< gaps above this no longer attract (constant residual)
+  /// Only samples whose normal is within acos(this) of the direction towards the lower attract
+  /// (occlusal surfaces; not the steep incisor and crown sides, whose overjet gap is designed).
+  double attraction_min_facing = 0.6;
+  double range_mm = 1.0;             ///< samples with d <= range at the base pose take part
   /// Solver side: a near-constant force closing the jaws along the occlusal axis, as a share
   /// of the residual samples' total area (0 = off; 0.1-0.5 made results worse, see report).
   double closure_weight = 0.0;
 };
+
+/// Robust cost of one sample (the solver's 0.5 * (rho_hinge + rho_attraction)) at signed
+/// distance d (mm), area a (mm^2); `attract` false leaves only the hinge.
+double SeatSampleCost(double d, double area_mm2, bool attract, const ResidualSettings& settings);
 
 /// Residuals of the samples within `range_mm` of the lower surface at X_LU_base (at most
 /// `max_samples`, thinned evenly with their areas scaled up), parameters relative to

@@ -58,8 +58,20 @@ struct PlanRequest {
   PenetrationMeasure penetration_measure = PenetrationMeasure::kOutlierArea;
   double outlier_area_mm2 = 0.05;     ///< kOutlierArea: deepest area that may exceed the limit
   double penetration_percentile = 99.0;  ///< kPercentile, in (0, 100]
-  /// Samples up to this distance above the lower surface attract the jaws (smooth contact score).
+  /// Samples up to this distance above the lower surface count in the smooth contact score
+  /// (reported/diagnostic; the solvers' driver is the seat objective below).
   double attraction_range_mm = 0.6;
+  /// Seat objective (Chang et al. 2010: minimize the distance between the occlusal surfaces
+  /// without collision): every occlusal upper sample with gap d in (0, seat_window_mm] is
+  /// pulled towards the lower (robust, Cauchy of scale seat_scale_mm); penetration beyond
+  /// seat_penetration_allowance_mm is pushed out by a strong Huber hinge. Contact area stays
+  /// the ranking quality of the proposals.
+  double seat_window_mm = 1.0;
+  double seat_scale_mm = 0.3;
+  double seat_penetration_allowance_mm = 0.02;
+  /// Only occlusal-facing upper samples attract: normal within acos(seat_min_facing) of the
+  /// direction towards the lower (the steep incisor sides keep their designed overjet gap).
+  double seat_min_facing = 0.6;
   /// 0..1: subtracts this share of the left/right imbalance of posterior contact from the
   /// score (0 = plain contact area).
   double bilateral_posterior_weight = 0.0;
