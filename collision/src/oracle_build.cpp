@@ -12,12 +12,6 @@
 namespace occlude::collision {
 namespace {
 
-Eigen::Vector3d Centroid(const io::TriangleMesh& m) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& v : m.vertices) c += v;
-  return m.vertices.empty() ? c : Eigen::Vector3d(c / static_cast<double>(m.vertices.size()));
-}
-
 // Index of the surface voxel containing p (a point on triangle t), or -1.
 long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint32_t t) {
   const Eigen::Vector3i base = grid.VoxelOf(p);
@@ -68,46 +62,6 @@ const char* ToString(AccuracyLevel level) {
     case AccuracyLevel::kExact: return "exact";
   }
   return "?";
-}
-
-ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L) {
-  ArchFrame f;
-  f.origin_L = Centroid(lower_L);
-  const Eigen::Vector3d up = Centroid(upper_L) - f.origin_L;
-  f.occlusal_L = up.norm() > 0 ? Eigen::Vector3d(up.normalized()) : Eigen::Vector3d::UnitY();
-  // Horizontal covariance of the lower arch.
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - f.occlusal_L * f.occlusal_L.transpose();
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& v : lower_L.vertices) {
-    const Eigen::Vector3d h = P * (v - f.origin_L);
-    cov += h * h.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  const Eigen::Vector3d widest = eig.eigenvectors().col(2);
-  Eigen::Vector3d depth = f.occlusal_L.cross(widest).normalized();
-  // The incisors are where the arch is narrow: compare the spread across the
-  // arch in the two halves along `depth`.
-  double spread[2] = {0, 0}, count[2] = {0, 0};
-  double lo = 0, hi = 0;
-  for (const auto& v : lower_L.vertices) {
-    const double a = (v - f.origin_L).dot(depth);
-    const int half = a > 0 ? 1 : 0;
-    spread[half] += std::abs((v - f.origin_L).dot(widest));
-    count[half] += 1;
-    lo = std::min(lo, a);
-    hi = std::max(hi, a);
-  }
-  const bool flip = count[0] > 0 && count[1] > 0 && spread[1] / count[1] > spread[0] / count[0];
-  if (flip) {
-    depth = -depth;
-    std::swap(lo, hi);
-    lo = -lo;
-    hi = -hi;
-  }
-  f.anterior_L = depth;
-  f.lateral_L = f.occlusal_L.cross(f.anterior_L).normalized();
-  f.anterior_split_mm = hi - 0.35 * (hi - lo);
-  return f;
 }
 
 JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,

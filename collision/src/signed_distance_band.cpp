@@ -338,14 +338,9 @@ bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::ui
 SignedDistanceSample NarrowBandSdf::Sign(const Eigen::Vector3d& p, const Nearest& n) const {
   SignedDistanceSample out;
   const std::uint32_t t = original_[n.triangle];
-  const Eigen::Vector3d pseudo = normals_.At(t, n.barycentric);
-  const Eigen::Vector3d diff = p - n.closest;
-  const double sign = diff.dot(pseudo) >= 0.0 ? 1.0 : -1.0;
-  const double dist = std::sqrt(n.squared_distance);
-  out.distance = sign * dist;
+  out.distance = normals_.Signed(t, n.barycentric, p, n.closest, &out.normal);
   out.closest = n.closest;
   out.triangle = t;
-  out.normal = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : pseudo.normalized();
   return out;
 }
 

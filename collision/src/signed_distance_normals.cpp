@@ -55,11 +55,21 @@ PseudoNormals::PseudoNormals(const io::TriangleMesh& mesh) {
   }
   std::sort(edge_slots.begin(), edge_slots.end());
   edges_.resize(3 * nt);
+  boundary_edge_.assign(3 * nt, false);
+  boundary_vertex_.assign(mesh.num_vertices(), false);
   for (std::size_t i = 0; i < edge_slots.size();) {
     std::size_t j = i;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (; j < edge_slots.size() && edge_slots[j].first == edge_slots[i].first; ++j) {
       sum += face[edge_slots[j].second / 3];
+    }
+    if (j - i == 1) {  // a border edge: one face
+      const std::uint32_t slot = edge_slots[i].second;
+      boundary_edge_[slot] = true;
+      const Eigen::Vector3i& tri = mesh.triangles[slot / 3];
+      const int k = static_cast<int>(slot % 3);
+      boundary_vertex_[static_cast<std::size_t>(tri[(k + 1) % 3])] = true;
+      boundary_vertex_[static_cast<std::size_t>(tri[(k + 2) % 3])] = true;
     }
     for (; i < j; ++i) edges_[edge_slots[i].second] = sum.cast<float>();
   }
@@ -85,9 +95,33 @@ Eigen::Vector3d PseudoNormals::At(std::uint32_t t, const Eigen::Vector3d& baryce
   return Face(t);
 }
 
+bool PseudoNormals::OnBoundary(std::uint32_t t, const Eigen::Vector3d& barycentric) const {
+  int zeros = 0, zero_k = 0, max_k = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (barycentric[k] < kZeroWeight) {
+      ++zeros;
+      zero_k = k;
+    }
+    if (barycentric[k] > barycentric[max_k]) max_k = k;
+  }
+  if (zeros >= 2) return boundary_vertex_[static_cast<std::size_t>(corners_[t][max_k])];
+  if (zeros == 1) return boundary_edge_[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(zero_k)];
+  return false;
+}
+
+double PseudoNormals::Signed(std::uint32_t t, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& p,
+                             const Eigen::Vector3d& closest, Eigen::Vector3d* unit_gradient) const {
+  const Eigen::Vector3d n = At(t, barycentric);
+  const Eigen::Vector3d diff = p - closest;
+  const double sign = (diff.dot(n) >= 0.0 || OnBoundary(t, barycentric)) ? 1.0 : -1.0;
+  const double dist = diff.norm();
+  if (unit_gradient) *unit_gradient = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : n.normalized();
+  return sign * dist;
+}
+
 std::size_t PseudoNormals::MemoryBytes() const {
   return (faces_.capacity() + edges_.capacity() + vertices_.capacity()) * sizeof(Eigen::Vector3f) +
-         corners_.capacity() * sizeof(Eigen::Vector3i);
+         corners_.capacity() * sizeof(Eigen::Vector3i) + (boundary_edge_.capacity() + boundary_vertex_.capacity()) / 8;
 }
 
 bool SignedDistanceBruteForce(const io::TriangleMesh& mesh, const PseudoNormals& normals,
@@ -104,14 +138,9 @@ bool SignedDistanceBruteForce(const io::TriangleMesh& mesh, const PseudoNormals&
       best_t = static_cast<std::uint32_t>(t);
     }
   }
-  const Eigen::Vector3d n = normals.At(best_t, best.barycentric);
-  const Eigen::Vector3d diff = p_F - best.point;
-  const double sign = diff.dot(n) >= 0.0 ? 1.0 : -1.0;
-  const double dist = std::sqrt(best.squared_distance);
-  out->distance = sign * dist;
+  out->distance = normals.Signed(best_t, best.barycentric, p_F, best.point, &out->normal);
   out->closest = best.point;
   out->triangle = best_t;
-  out->normal = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : n.normalized();
   return true;
 }
 

@@ -144,8 +144,10 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
   }
   for (int outer = 0; outer < max_outer; ++outer) {
     if (result.evaluations >= max_evaluations) break;
-    const SurfaceResiduals::Impl model(stage, samples, PoseOf(problem, x), problem.X_ref, problem.pivot_L, settings,
-                                       4000);
+    const Eigen::Isometry3d X_base = PoseOf(problem, x);
+    const std::vector<bool> spikes = SpikeSamples(stage, samples, X_base, problem);
+    const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L, settings, 4000,
+                                       &spikes);
     if (model.area.empty()) {
       result.message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
       break;

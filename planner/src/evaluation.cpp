@@ -19,6 +19,10 @@ double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2) {
   return 0.0;
 }
 
+double SpikePatchCap(const PlanRequest& request) {
+  return request.penetration_measure == PenetrationMeasure::kMax ? 0.0 : request.spike_patch_max_mm2;
+}
+
 double RobustPenetration(const std::vector<std::pair<double, double>>& depth_area, std::size_t deep,
                          double deep_depth_mm, double deep_area_mm2, double outlier_budget_mm2,
                          std::vector<std::size_t>* outlier_index) {
@@ -64,8 +68,23 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
   e.anterior_share = r.anterior_share;
   e.posterior_share = r.posterior_share;
   e.parts = r.parts;
+  // Spike patches first (linked at 2.5 sample spacings), then the deepest-area budget.
+  std::vector<PenetratingSample> pen;
+  pen.reserve(r.penetrations.size());
+  for (const auto& p : r.penetrations) pen.push_back({p.p_L, -p.distance_mm, p.area_mm2});
+  const std::vector<bool> spike =
+      SpikeMembers(pen, 2.5 * stage.oracle->sample_spacing_mm(), SpikePatchCap(request));
   std::vector<std::pair<double, double>> depth_area;
-  for (const auto& p : r.penetrations) depth_area.emplace_back(-p.distance_mm, p.area_mm2);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < pen.size(); ++i) {
+    if (spike[i]) {
+      const auto& p = r.penetrations[i];
+      e.outliers.push_back({p.p_L, pen[i].depth_mm, p.area_mm2, p.part, true});
+      continue;
+    }
+    depth_area.emplace_back(pen[i].depth_mm, pen[i].area_mm2);
+    kept.push_back(i);
+  }
   const double mean_area = r.penetrations.empty() ? 0.1 : r.penetration_area_mm2 / static_cast<double>(r.penetrations.size());
   const double deep_depth = q.penetration_search_mm + stage.oracle->lower_sdf().band_mm();
   std::vector<std::size_t> outliers;
@@ -73,9 +92,9 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
       RobustPenetration(depth_area, r.deep_samples, deep_depth, mean_area,
                         OutlierBudget(request, r.contact_area_mm2 + r.penetration_area_mm2), &outliers);
   if (r.deep_samples > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
-  for (const std::size_t i : outliers) {
-    const auto& p = r.penetrations[i];
-    e.outliers.push_back({p.p_L, -p.distance_mm, p.area_mm2, p.part});
+  for (const std::size_t k : outliers) {
+    const auto& p = r.penetrations[kept[k]];
+    e.outliers.push_back({p.p_L, -p.distance_mm, p.area_mm2, p.part, false});
   }
   // Posterior contact per side, for the bilateral weighting.
   const collision::ArchFrame& arch = stage.oracle->arch();

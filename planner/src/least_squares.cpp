@@ -67,10 +67,11 @@ double SeatSampleCost(double d, double area_mm2, bool attract, const ResidualSet
 SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSet& all,
                              const Eigen::Isometry3d& X_LU_base, const Eigen::Isometry3d& X_LU_ref,
                              const Eigen::Vector3d& p_LPivot, const ResidualSettings& settings_in,
-                             std::size_t max_samples)
+                             std::size_t max_samples, const std::vector<bool>* excluded)
     : stage(stage_in), X_ref(X_LU_ref), pivot(p_LPivot), settings(settings_in) {
   std::vector<std::size_t> near;
   for (std::size_t i = 0; i < all.size(); ++i) {
+    if (excluded && (*excluded)[i]) continue;
     double d = 0.0;
     bool deep = false;
     if (detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d, nullptr, &deep) &&

@@ -73,6 +73,9 @@ void ValidateRequest(const PlanRequest& r) {
   if (!finite_pos(r.attraction_range_mm) || r.attraction_range_mm <= r.contact_band_mm) {
     fail("attraction_range_mm: must be finite and above contact_band_mm (default 0.6)");
   }
+  if (!(std::isfinite(r.spike_patch_max_mm2) && r.spike_patch_max_mm2 >= 0.0)) {
+    fail("spike_patch_max_mm2: must be finite and >= 0 (0 turns spike patches off; default 5)");
+  }
   if (!finite_pos(r.seat_window_mm)) fail("seat_window_mm: must be finite and > 0 (default 1.0)");
   if (!finite_pos(r.seat_scale_mm)) fail("seat_scale_mm: must be finite and > 0 (default 0.3)");
   if (!(std::isfinite(r.seat_penetration_allowance_mm) && r.seat_penetration_allowance_mm >= 0.0)) {

@@ -81,6 +81,10 @@ struct SetEvaluation {
 };
 SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
                           const Eigen::Isometry3d& X_LU, const Problem& problem);
+/// Per sample of the set: in a spike patch at X_LU (see PenetrationPatch), so left out of the
+/// penetration penalty and measure.
+std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples, const Eigen::Isometry3d& X_LU,
+                               const Problem& problem);
 
 /// Moves x along the settle direction (within bounds) to where the penetration measure of
 /// the set just meets the limit: closes open jaws, opens nested ones.

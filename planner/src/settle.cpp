@@ -21,6 +21,28 @@ ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& reque
   return s;
 }
 
+std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples, const Eigen::Isometry3d& X_LU,
+                               const Problem& problem) {
+  std::vector<bool> spike(samples.size(), false);
+  const double cap = SpikePatchCap(*problem.request);
+  if (cap <= 0.0) return spike;
+  std::vector<PenetratingSample> pen;
+  std::vector<std::size_t> index;
+  const double reach = std::max(SeatSettings(stage, *problem.request).window_mm, 0.5);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
+    double d = 0.0;
+    bool deep = false;
+    if (StageDistance(stage, p_L, reach, &d, nullptr, &deep) ? d < 0.0 : deep) {
+      pen.push_back({p_L, deep ? stage.oracle->lower_sdf().band_mm() : -d, samples.area_mm2[i]});
+      index.push_back(i);
+    }
+  }
+  const std::vector<bool> member = SpikeMembers(pen, 2.5 * samples.spacing_mm, cap);
+  for (std::size_t k = 0; k < pen.size(); ++k) spike[index[k]] = member[k];
+  return spike;
+}
+
 SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
                           const Eigen::Isometry3d& X_LU, const Problem& problem) {
   const PlanRequest& req = *problem.request;
@@ -30,26 +52,50 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
   const double deep_distance = -stage.oracle->lower_sdf().band_mm();
   SetEvaluation e;
   e.min_distance_mm = std::numeric_limits<double>::infinity();
-  std::vector<std::pair<double, double>> pen;
-  double deep_area = 0.0, left = 0.0, right = 0.0, near_area = 0.0;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
+  // Pass 1: distances (deep samples at -band), and the spike patches among the penetrating.
+  const std::size_t n = samples.size();
+  std::vector<double> dist(n);
+  std::vector<char> known(n), deep(n);
+  std::vector<PenetratingSample> pen;
+  std::vector<std::size_t> pen_index;
+  for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
-    double d = 0.0;
-    bool deep = false;
-    if (!StageDistance(stage, p_L, reach, &d, nullptr, &deep)) {
-      // As the residual model sees them: deep inside, or beyond the window.
-      e.seat_cost += SeatSampleCost(deep ? deep_distance : seat.window_mm, samples.area_mm2[i],
-                                    samples.facing[i] >= seat.attraction_min_facing, seat);
-      if (deep) {
+    bool is_deep = false;
+    known[i] = StageDistance(stage, p_L, reach, &dist[i], nullptr, &is_deep) ? 1 : 0;
+    deep[i] = is_deep ? 1 : 0;
+    if (!known[i]) dist[i] = is_deep ? deep_distance : seat.window_mm;
+    if (known[i] ? dist[i] < 0.0 : is_deep) {
+      pen.push_back({p_L, -dist[i], samples.area_mm2[i]});
+      pen_index.push_back(i);
+    }
+  }
+  std::vector<char> spike(n, 0);
+  if (!pen.empty()) {
+    const std::vector<bool> member = SpikeMembers(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req));
+    for (std::size_t k = 0; k < pen.size(); ++k) spike[pen_index[k]] = member[k] ? 1 : 0;
+  }
+  // Pass 2: costs and measures; spike samples are left out of the penalty and the measure.
+  std::vector<std::pair<double, double>> pen_kept;
+  double deep_area = 0.0, left = 0.0, right = 0.0, near_area = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = dist[i];
+    const double a = samples.area_mm2[i];
+    const bool attract = samples.facing[i] >= seat.attraction_min_facing;
+    if (spike[i]) {
+      e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
+      e.seat_cost += SeatSampleCost(0.0, a, attract, seat);
+      continue;
+    }
+    e.seat_cost += SeatSampleCost(d, a, attract, seat);
+    if (!known[i]) {
+      if (deep[i]) {
         ++e.deep;
-        deep_area += samples.area_mm2[i];
+        deep_area += a;
       }
       continue;
     }
-    e.seat_cost += SeatSampleCost(d, samples.area_mm2[i], samples.facing[i] >= seat.attraction_min_facing, seat);
     e.min_distance_mm = std::min(e.min_distance_mm, d);
     if (d > range) continue;
-    const double a = samples.area_mm2[i];
     double k = 1.0;
     if (d > band) {
       const double s = (d - band) / (range - band);
@@ -58,11 +104,11 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
     if (d >= 0.0 && d <= band) e.contact_area_mm2 += a;
     if (d <= band) near_area += a;
     if (d < 0.0) {
-      pen.emplace_back(-d, a);
+      pen_kept.emplace_back(-d, a);
       e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
     }
     e.smooth_score += a * k;
-    const Eigen::Vector3d rel = p_L - problem.arch.origin_L;
+    const Eigen::Vector3d rel = X_LU * samples.p_U[i] - problem.arch.origin_L;
     if (req.bilateral_posterior_weight > 0.0 && rel.dot(problem.arch.anterior_L) <= problem.arch.anterior_split_mm) {
       (rel.dot(problem.arch.lateral_L) >= 0.0 ? left : right) += a * k;
     }
@@ -74,7 +120,7 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
   // coarse stages ignore the request's outlier handling, so allow at least one.
   double budget = OutlierBudget(req, near_area);
   if (budget > 0.0) budget = std::max(budget, 1.01 * samples.spacing_mm * samples.spacing_mm);
-  e.robust_penetration_mm = RobustPenetration(pen, e.deep, deep_depth, mean_area, budget);
+  e.robust_penetration_mm = RobustPenetration(pen_kept, e.deep, deep_depth, mean_area, budget);
   if (e.deep > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
   e.feasible = e.robust_penetration_mm <= req.max_penetration_mm;
   return e;

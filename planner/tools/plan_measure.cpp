@@ -135,6 +135,18 @@ int main(int argc, char** argv) {
       const double p = reverse_pen(best.X_LU, &a);
       std::printf("     reverse check: lower in upper max %.3f mm, area %.3f mm2\n", p, a);
     }
+    if (const char* dir = std::getenv("OCCLUDE_MEASURE_POSES")) {  // pose files for `occlude report --pose`
+      const std::string file = std::string(dir) + "/run" + std::to_string(run) + ".json";
+      if (std::FILE* f = std::fopen(file.c_str(), "w")) {
+        const Eigen::Matrix4d m = best.X_LU.matrix();
+        std::fprintf(f, "{\"X_LU\": [");
+        for (int r = 0; r < 4; ++r) {
+          std::fprintf(f, "%s[%.17g, %.17g, %.17g, %.17g]", r ? ", " : "", m(r, 0), m(r, 1), m(r, 2), m(r, 3));
+        }
+        std::fprintf(f, "]}\n");
+        std::fclose(f);
+      }
+    }
     if (std::getenv("OCCLUDE_MEASURE_VERBOSE")) {
       const planner::PoseParameters d = planner::DecomposePose(best.X_LU, pivot_true, X_true);
       std::printf("     delta t %s  r %s  (occlusal %s)\n", Fmt(d.translation_mm).c_str(), Fmt(d.rotation_deg).c_str(),

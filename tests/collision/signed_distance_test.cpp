@@ -215,6 +215,11 @@ TEST(SignedDistanceOpenMesh, SignsNearFacesAndOpenBoundary) {
       {V(0.5, -0.05, 1.0), 0.05},                      // level with the rim, outside
       {V(-0.1, -0.1, 1.1), std::sqrt(0.03)},           // beyond an open rim corner
       {V(-0.1, 0.5, 1.05), std::sqrt(0.01 + 0.0025)},  // rim of the x = 0 wall
+      // Closest to the rim from the inner side: beyond the border of an open surface there
+      // is no inside, so these count as outside (pseudo-normals alone would say inside).
+      {V(0.5, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},   // over the rim of the y = 0 wall
+      {V(0.5, 0.15, 1.05), std::sqrt(0.0225 + 0.0025)},  // above the open top, nearest a rim
+      {V(0.05, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},  // over the rim, near a corner
   };
   for (const Case& c : cases) {
     SignedDistanceSample s;

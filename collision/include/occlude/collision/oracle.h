@@ -46,7 +46,9 @@ struct ArchFrame {
 };
 
 /// Estimates the arch frame from the two jaws in a common frame (the bite as
-/// given): occlusal = lower-to-upper centroid direction; lateral = the widest
+/// given): occlusal = normal of the plane fitted through the interface (lower
+/// vertices within 1.5 mm of an upper vertex; with fewer than 30 of them, the
+/// lower jaw's smallest principal axis), oriented lower -> upper; lateral = the widest
 /// horizontal direction of the lower arch; anterior = the horizontal direction
 /// where the arch narrows (incisors); the anterior region is the front 35 % of
 /// the arch depth.
@@ -139,6 +141,7 @@ class JawOracle {
   const NarrowBandSdf& lower_sdf() const { return sdf_; }
   const ArchFrame& arch() const { return arch_; }
   std::size_t num_samples() const { return sample_area_.size(); }
+  double sample_spacing_mm() const { return options_.sample_spacing_mm; }
   double build_seconds() const { return build_seconds_; }
   std::size_t MemoryBytes() const;
 

@@ -7,6 +7,11 @@
 // < 0 inside. The sign comes from surface orientation only, never from an
 // inside/outside test, so it is defined for open meshes (scans, gingiva) and
 // for multi-shell meshes (one closed shell per tooth plus an open gingiva).
+// Open borders: a point whose closest surface point lies on a boundary edge
+// (an edge of one face only: the border of a scan) or on a vertex of one
+// counts as outside, whatever the side: beyond the border of an open surface
+// there is no inside (otherwise scan borders make phantom penetrations of
+// millimetres, measured on the c3/c4 intraoral cases).
 // Limitation: with several shells the sign is the one with respect to the
 // nearest shell's surface; a point inside shell A but nearer to a face of an
 // overlapping shell B that lies inside A gets B's sign (positive when outside B).
@@ -43,6 +48,14 @@ class PseudoNormals {
   /// normal.
   Eigen::Vector3d At(std::uint32_t t, const Eigen::Vector3d& barycentric) const;
 
+  /// True when the closest point given by its barycentric weights lies on a
+  /// boundary edge of the mesh or on a vertex of one (same weight rule as At).
+  bool OnBoundary(std::uint32_t t, const Eigen::Vector3d& barycentric) const;
+  /// Signed distance of p given its closest point on triangle t (barycentric
+  /// weights): |p - closest| signed by the pseudo-normal; + on open borders.
+  double Signed(std::uint32_t t, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& p,
+                const Eigen::Vector3d& closest, Eigen::Vector3d* unit_gradient) const;
+
   /// Unit face normal of t (zero when degenerate).
   Eigen::Vector3d Face(std::uint32_t t) const { return faces_[t].cast<double>(); }
   /// Pseudo-normal of edge k of t: the edge opposite corner k.
@@ -61,6 +74,8 @@ class PseudoNormals {
   std::vector<Eigen::Vector3f> edges_;     ///< 3 per triangle (edge k opposite corner k)
   std::vector<Eigen::Vector3f> vertices_;  ///< per vertex
   std::vector<Eigen::Vector3i> corners_;   ///< vertex indices per triangle
+  std::vector<bool> boundary_edge_;        ///< 3 per triangle, as edges_
+  std::vector<bool> boundary_vertex_;      ///< per vertex: on a boundary edge
 };
 
 struct SignedDistanceSample {

@@ -21,6 +21,7 @@ struct OutlierPoint {
   double depth_mm = 0.0;                          ///< > 0
   double area_mm2 = 0.0;
   std::int32_t part = 0;                          ///< upper part (tooth) index
+  bool spike = false;  ///< in a spike patch (else: within the deepest-area budget)
 };
 
 struct PoseEvaluation {
@@ -42,6 +43,34 @@ struct PoseEvaluation {
 /// request's band, penetration measure and score weights.
 PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X_LU,
                             const PlanRequest& request);
+
+/// A penetrating sample (depth > 0) at its position in L.
+struct PenetratingSample {
+  Eigen::Vector3d p_L = Eigen::Vector3d::Zero();
+  double depth_mm = 0.0;
+  double area_mm2 = 0.0;
+};
+/// Penetrating samples linked by proximity (a chain of samples within link_mm).
+struct PenetrationPatch {
+  std::vector<std::size_t> members;  ///< indices into the samples
+  double depth_mm = 0.0;             ///< deepest member
+  double area_mm2 = 0.0;
+  Eigen::Vector3d centre_L = Eigen::Vector3d::Zero();   ///< area-weighted
+  Eigen::Vector3d deepest_L = Eigen::Vector3d::Zero();
+  /// A scanner spike: deeper than the radius of a disc of its area (steeper than a hemisphere
+  /// pressed in: a crown would have to sink deeper than its own radius of curvature) and at most
+  /// the size cap in area.
+  bool spike = false;
+};
+/// Groups penetrating samples into patches (grid hash, O(n)); patches in the order of their
+/// first member. `max_spike_area_mm2` caps the area of a patch that may be a spike (0: none).
+std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSample>& samples, double link_mm,
+                                                 double max_spike_area_mm2);
+/// Per sample: member of a spike patch.
+std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, double link_mm,
+                               double max_spike_area_mm2);
+/// The spike-patch size cap the request asks for (0 when outliers are off: kMax).
+double SpikePatchCap(const PlanRequest& request);
 
 /// The robust penetration measure of a list of (depth > 0, area) samples with `deep` samples
 /// beyond the measured range (counted at `deep_depth_mm`, `deep_area_mm2` each): the deepest

@@ -58,6 +58,10 @@ struct PlanRequest {
   PenetrationMeasure penetration_measure = PenetrationMeasure::kOutlierArea;
   double outlier_area_mm2 = 0.05;     ///< kOutlierArea: deepest area that may exceed the limit
   double penetration_percentile = 99.0;  ///< kPercentile, in (0, 100]
+  /// kOutlierArea / kPercentile: penetration patches steeper than a hemisphere (deeper than the
+  /// radius of a disc of their area: scan spikes, folds, flaps) up to this area are outliers
+  /// too (see PenetrationPatch); 0 turns spike patches off.
+  double spike_patch_max_mm2 = 5.0;
   /// Samples up to this distance above the lower surface count in the smooth contact score
   /// (reported/diagnostic; the solvers' driver is the seat objective below).
   double attraction_range_mm = 0.6;
