@@ -11,9 +11,10 @@
 //   D     clearance (synthetic_clearance.cpp): enough vertical gap that pulling the jaws
 //         kPullApart apart opens at least kKeptApart everywhere.
 //
-// Contacts: near each cusp tip, the grid vertex where the design dips into the lower jaw and
-// where both pulls (upper point up from the lower surface, lower point down from the upper
-// one) are checked exactly to open kKeptApart.
+// Contacts: on the four flanks of each cusp, grid vertices on inclines (so that the bite locks
+// against slides and rotations) near where the design meets the lower jaw, where both pulls
+// (upper point up from the lower surface, lower point down from the upper one) are checked
+// exactly to open kKeptApart.
 //
 // Because both surfaces use the same grid and triangles, H_U - H_L on any triangle is the
 // linear interpolant of G >= 0: the piecewise-linear surfaces cannot interpenetrate, and they
@@ -31,7 +32,10 @@ namespace {
 constexpr double kPatchRadius = 0.25;         // mm, C == 0 within this distance of a contact
 constexpr double kGapRamp = 1.5;              // mm, C rises over this distance beyond the patch
 constexpr double kFarGap = 0.5;               // mm, C away from contacts
-constexpr double kContactSearchRadius = 1.0;  // mm around a cusp tip to look for a contact
+constexpr double kContactSearchRadius = 1.0;  // mm around a flank point to look for a contact
+constexpr double kDesignReach = 0.3;          // mm: the upper design may sit this far above a contact
+constexpr double kMinFlankSlope = 12.0 * M_PI / 180.0;  // a contact incline locks at first order
+constexpr double kMaxFlankSlope = 36.0 * M_PI / 180.0;  // and still opens kKeptApart when pulled
 
 Eigen::Vector3d LowerPoint(const OcclusalGrid& grid, const OcclusalFields& fields, int v) {
   const Eigen::Vector2d& xz = grid.xz[static_cast<std::size_t>(v)];
@@ -53,29 +57,53 @@ int NearestEligible(const OcclusalGrid& grid, const Eigen::Vector2d& centre, dou
   return -1;
 }
 
-/// For each cusp tip of either jaw (canines and posteriors), the nearest grid vertex within
-/// kContactSearchRadius where both jaws have a crown, the upper design dips into the lower jaw
-/// (H_U0 <= H_L), and a point kPullApart above the lower surface is kKeptApart from it.
+/// Slope angle (rad) of the lower occlusal surface at grid vertex v, from its grid neighbours
+/// (central differences; one-sided at the border).
+double LowerSlope(const OcclusalGrid& grid, const OcclusalFields& fields, int v) {
+  const int i = v / (grid.nt + 1), j = v % (grid.nt + 1);
+  const int i0 = std::max(0, i - 1), i1 = std::min(grid.ns, i + 1);
+  const int j0 = std::max(0, j - 1), j1 = std::min(grid.nt, j + 1);
+  const Eigen::Vector3d ts = LowerPoint(grid, fields, grid.Index(i1, j)) - LowerPoint(grid, fields, grid.Index(i0, j));
+  const Eigen::Vector3d tt = LowerPoint(grid, fields, grid.Index(i, j1)) - LowerPoint(grid, fields, grid.Index(i, j0));
+  const Eigen::Vector3d n = ts.cross(tt);
+  if (n.norm() == 0.0) return 0.0;
+  return std::acos(std::min(1.0, std::abs(n.normalized().y())));
+}
+
+/// Flank contacts: for each cusp of either jaw (canines and posteriors), one contact on each
+/// of its four flanks (mesial, distal, buccal, lingual: one cusp sigma from the tip in the
+/// parameter domain), at the nearest grid vertex within kContactSearchRadius where both jaws
+/// have a crown, the upper design comes within kDesignReach of the lower surface (or dips into
+/// it), the lower surface slopes between kMinFlankSlope and kMaxFlankSlope, and a point
+/// kPullApart above the lower surface is kKeptApart from it. Contacts on inclines facing all
+/// horizontal directions lock the bite: any slide or rotation of the upper jaw drives some
+/// contact into the lower one at first order, so the jaws must open and every other contact
+/// opens with them (cusp tips and fossa bottoms are flat and would let the jaws slide).
 std::vector<int> SelectContacts(const DentitionLayout& layout, const OcclusalGrid& grid,
                                 const OcclusalFields& fields,
                                 const std::vector<Eigen::Vector3i>& triangles) {
   const auto eligible = [&](int v) {
     const auto k = static_cast<std::size_t>(v);
     if (fields.lower_tooth[k] < 0 || fields.upper_tooth[k] < 0) return false;
-    if (fields.upper_design_y[k] > fields.lower_y[k]) return false;
+    if (fields.upper_design_y[k] > fields.lower_y[k] + kDesignReach) return false;
+    const double slope = LowerSlope(grid, fields, v);
+    if (slope < kMinFlankSlope || slope > kMaxFlankSlope) return false;
     const Eigen::Vector3d pulled =
         LowerPoint(grid, fields, v) + kPullApart * Eigen::Vector3d::UnitY();
     return DistanceToSurfaceNear(grid, fields.lower_y, triangles, v, pulled, kKeptApart) >=
            kKeptApart;
   };
+  static constexpr double kFlank[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   std::vector<int> contacts;
   for (const JawLayout* jaw : {&layout.lower, &layout.upper}) {
     for (const Tooth& tooth : jaw->teeth) {
       for (const Cusp& cusp : tooth.cusps) {
-        const Eigen::Vector2d tip =
-            ArchPoint(layout.arch, cusp.s) + cusp.t * ArchNormal(layout.arch, cusp.s);
-        const int v = NearestEligible(grid, tip, cusp.s, cusp.t, eligible);
-        if (v >= 0) contacts.push_back(v);
+        for (const auto& f : kFlank) {
+          const double s = cusp.s + f[0] * cusp.sigma, t = cusp.t + f[1] * cusp.sigma;
+          const Eigen::Vector2d at = ArchPoint(layout.arch, s) + t * ArchNormal(layout.arch, s);
+          const int v = NearestEligible(grid, at, s, t, eligible);
+          if (v >= 0) contacts.push_back(v);
+        }
       }
     }
   }

@@ -118,6 +118,8 @@ int main(int argc, char** argv) {
       std::sscanf(sw, "%lf,%lf,%lf", &req.seat_window_mm, &req.seat_scale_mm, &req.seat_penetration_allowance_mm);
     }
     if (const char* fc = std::getenv("OCCLUDE_MEASURE_FACING")) req.seat_min_facing = std::atof(fc);
+    if (const char* nm = std::getenv("OCCLUDE_MEASURE_NLOPT")) req.nlopt_local = planner::NloptLocalMethodFromName(nm);
+    if (const char* me = std::getenv("OCCLUDE_MEASURE_MAXEVAL")) req.max_evaluations = std::atoi(me);
     req.num_threads = threads;
     req.seed = static_cast<std::uint32_t>(run + 1);
     const planner::PlanResult res = planner::Plan(schedule.stages, req);

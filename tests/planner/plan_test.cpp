@@ -15,14 +15,11 @@ namespace {
 using test::PerturbedRequest;
 using test::Synthetic;
 
-// Measured (report, plan_measure on the synthetic pair): the seat objective (minimal gap of
-// the occlusal surfaces, Chang et al. 2010) has its optimum about 0.5 mm (a 0.38-0.40 mm
-// posterior slide plus 0.2-0.3 deg) from the designed bite, like the former max-contact
-// objective did. It stays there with no penetration allowed at all (max_penetration_mm 0,
-// exact distances), so the design is not locked mesio-distally to 0.3 mm against a
-// one-sided (upper samples in the lower field) collision check. 0.3 mm is not met; this bound
-// documents what holds.
-constexpr double kReturnToleranceMm = 0.8;
+// The synthetic bite locks (contacts on cusp inclines facing every direction), so the designed
+// pose is the seat the solvers must find again: the success bar, 0.3 mm at the
+// reference points and 1 degree. (Measured with plan_measure on 10k triangles, 0.8/0.4 mm:
+// median 0.12 mm / 0.13 deg, most of it the allowed 0.05 mm of closing.)
+constexpr double kReturnToleranceMm = 0.3;
 constexpr double kReturnToleranceDeg = 1.0;
 // The limit plus the final settle's bisection tolerance (0.003 mm).
 constexpr double kPenetrationLimitMm = 0.05 + 0.004;
@@ -48,7 +45,7 @@ TEST_P(SolverReturnTest, ReturnsNearGroundTruthFromPerturbedStart) {
   EXPECT_TRUE(p.X_LU.matrix().allFinite());
 }
 
-// The NLopt solvers do not return (see NloptSolversStayFeasible and the report).
+// NLopt: see NloptSolversStayFeasible.
 INSTANTIATE_TEST_SUITE_P(LeastSquaresSolvers, SolverReturnTest,
                          ::testing::Values(SolverKind::kCeres, SolverKind::kCoarseToFine),
                          [](const ::testing::TestParamInfo<SolverKind>& param_info) {
@@ -57,10 +54,11 @@ INSTANTIATE_TEST_SUITE_P(LeastSquaresSolvers, SolverReturnTest,
                            return n;
                          });
 
-// The NLopt solvers minimize the same seat cost (penalty, no constraint) and now move: with
-// plan_measure (10k triangles, 0.4 mm voxels) they land about 0.5 mm from the truth like
-// Ceres, but on this coarse 5k / 0.8 mm fixture COBYLA ends 1.7 mm away, so only feasibility
-// and not drifting away are checked here.
+// The NLopt solvers minimize the same seat cost derivative-free. With plan_measure (10k
+// triangles, 0.5 mm voxels) COBYLA returns within 0.3 mm in 4 of 4 runs (median 0.13 mm); on
+// this 5k-triangle fixture it stops 0.6 mm away at its evaluation budget, so the bound here is
+// 1 mm (the validation command measures the solvers on the real cases).
+constexpr double kNloptReturnToleranceMm = 1.0;
 TEST(PlanTest, NloptSolversStayFeasible) {
   const auto& c = Synthetic();
   for (SolverKind kind : {SolverKind::kNloptLocal, SolverKind::kNloptGlobal}) {
@@ -71,7 +69,8 @@ TEST(PlanTest, NloptSolversStayFeasible) {
     EXPECT_TRUE(p.evaluation.feasible) << ToString(kind) << " " << p.message;
     EXPECT_LE(p.evaluation.constrained_penetration_mm, kPenetrationLimitMm);
     EXPECT_GT(p.evaluation.contact_area_mm2, 1.0);
-    EXPECT_LE(ComparePoses(p.X_LU, c.pair.X_LU, c.points_U).translation_mm, 3.0) << ToString(kind);
+    EXPECT_LE(ComparePoses(p.X_LU, c.pair.X_LU, c.points_U).translation_mm, kNloptReturnToleranceMm)
+        << ToString(kind);
     EXPECT_GT(p.evaluations, 10);
   }
 }

@@ -14,8 +14,8 @@ namespace occlude::planner::test {
 struct SyntheticCase {
   io::SyntheticJawPair pair;
   std::shared_ptr<const io::TriangleMesh> lower, upper;
-  OwnedSchedule schedule;         ///< 0.8 mm subvoxel
-  OwnedSchedule coarse_to_fine;   ///< 0.8 mm then 0.6 mm subvoxel
+  OwnedSchedule schedule;         ///< 0.5 mm subvoxel (coarser blurs the locking inclines)
+  OwnedSchedule coarse_to_fine;   ///< 0.8 mm then 0.5 mm subvoxel
   std::vector<Eigen::Vector3d> points_U;
   Eigen::Vector3d pivot_L;
 };
@@ -28,8 +28,8 @@ inline const SyntheticCase& Synthetic() {
     s->pair = io::MakeSyntheticJawPair(o);
     s->lower = std::make_shared<io::TriangleMesh>(s->pair.lower_L);
     s->upper = std::make_shared<io::TriangleMesh>(s->pair.upper_U);
-    s->schedule = BuildSchedule(s->lower, s->upper, {0.8}, false);
-    s->coarse_to_fine = BuildSchedule(s->lower, s->upper, {0.8, 0.6}, false);
+    s->schedule = BuildSchedule(s->lower, s->upper, {0.5}, false);
+    s->coarse_to_fine = BuildSchedule(s->lower, s->upper, {0.8, 0.5}, false);
     const auto& arch = s->schedule.stages.back().oracle->arch();
     s->points_U = ArchReferencePoints_U(*s->upper, s->pair.X_LU, arch);
     s->pivot_L = s->pair.X_LU * s->points_U[0];

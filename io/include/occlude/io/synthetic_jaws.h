@@ -36,7 +36,7 @@ inline constexpr std::size_t kMaxSyntheticTriangles = 500000;
 /// Contract of the ground truth (mm): at X_LU no point of one jaw lies deeper than this inside
 /// the other, and both surfaces pass within this distance of every returned contact point.
 /// (By construction both numbers are 0 up to double rounding; see io/src/synthetic_gap.cpp.)
-/// Also by construction: opened 0.5 mm along the occlusal axis the jaws are >= 0.47 mm apart,
+/// Also by construction: opened 0.5 mm along the occlusal axis the jaws are >= 0.38 mm apart,
 /// so the bite is tight only at the contacts.
 inline constexpr double kSyntheticContactToleranceMm = 0.01;
 
