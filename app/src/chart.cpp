@@ -198,7 +198,7 @@ std::string RenderLineChartPng(const LineChart& chart) {
         continue;
       }
       const cv::Point2d p(px(ax.Fraction(s.x[i])) - plot.x, py(ay.Fraction(s.y[i])) - plot.y);
-      if (have_prev) {
+      if (have_prev && !s.points_only) {
         if (s.dashed) {
           DashedLine(clip, prev, p, color, 2);
         } else {
@@ -238,7 +238,9 @@ std::string RenderLineChartPng(const LineChart& chart) {
     const ChartSeries& s = chart.series[k];
     const cv::Scalar color =
         kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
-    if (s.dashed) {
+    if (s.points_only) {
+      cv::circle(img, cv::Point(lx + 17, ly - 5), 4, color, cv::FILLED, cv::LINE_AA);
+    } else if (s.dashed) {
       DashedLine(img, cv::Point2d(lx, ly - 5), cv::Point2d(lx + 34, ly - 5), color, 2);
     } else {
       cv::line(img, cv::Point(lx, ly - 5), cv::Point(lx + 34, ly - 5), color, 2, cv::LINE_AA);

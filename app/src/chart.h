@@ -15,6 +15,7 @@ struct ChartSeries {
   std::vector<double> x, y;
   int color = -1;       ///< index into the chart palette; -1 = the series' position
   bool dashed = false;  ///< e.g. the peer library's lines
+  bool points_only = false;  ///< scatter: markers, no connecting line
 };
 
 /// A horizontal reference line (a deadline, a target).

@@ -40,5 +40,6 @@ void AddDemoCommand(CLI::App& app);
 void AddCollideCommand(CLI::App& app);
 void AddReportCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
+void AddValidateCommand(CLI::App& app);
 
 }  // namespace occlude::app

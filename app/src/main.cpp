@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   occlude::app::AddCollideCommand(app);
   occlude::app::AddReportCommand(app);
   occlude::app::AddBenchCommand(app);
+  occlude::app::AddValidateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -23,6 +23,10 @@ double SpikePatchCap(const PlanRequest& request) {
   return request.penetration_measure == PenetrationMeasure::kMax ? 0.0 : request.spike_patch_max_mm2;
 }
 
+double SpikeShallowMm(const PlanRequest& request) {
+  return std::max(0.002, 0.5 * std::min(request.max_penetration_mm, request.seat_penetration_allowance_mm));
+}
+
 double RobustPenetration(const std::vector<std::pair<double, double>>& depth_area, std::size_t deep,
                          double deep_depth_mm, double deep_area_mm2, double outlier_budget_mm2,
                          std::vector<std::size_t>* outlier_index) {
@@ -73,7 +77,8 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
   pen.reserve(r.penetrations.size());
   for (const auto& p : r.penetrations) pen.push_back({p.p_L, -p.distance_mm, p.area_mm2});
   const std::vector<bool> spike =
-      SpikeMembers(pen, 2.5 * stage.oracle->sample_spacing_mm(), SpikePatchCap(request));
+      SpikeMembersForMeasure(pen, 2.5 * stage.oracle->sample_spacing_mm(), SpikePatchCap(request),
+                             request.max_penetration_mm, SpikeShallowMm(request));
   std::vector<std::pair<double, double>> depth_area;
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < pen.size(); ++i) {

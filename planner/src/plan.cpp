@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <numeric>
 #include <thread>
 
@@ -39,7 +40,10 @@ struct Context {
   std::vector<detail::SampleSet> sets;  // per stage
 };
 
-detail::LocalResult RunChain(const Context& c, const Vector6d& start) {
+// Stages [first, stop] of the chain for one start (coarse-to-fine; the others ignore them). Coarse-to-fine settles on the first stage
+// it runs when that is stage 0 and runs Ceres on each; the single-stage solvers run on the
+// last stage only.
+detail::LocalResult RunChain(const Context& c, const Vector6d& start, std::size_t first, std::size_t stop) {
   const PlanRequest& req = *c.problem->request;
   const OracleSchedule& sch = *c.schedule;
   const std::size_t last = sch.size() - 1;
@@ -61,7 +65,8 @@ detail::LocalResult RunChain(const Context& c, const Vector6d& start) {
     case SolverKind::kCoarseToFine: {
       Vector6d x = start;
       detail::LocalResult stage_result;
-      for (std::size_t s = 0; s <= last; ++s) {
+      stage_result.x = x;
+      for (std::size_t s = first; s <= std::min(stop, last); ++s) {
         if (s == 0) x = detail::SettleOnSet(sch[s], c.sets[s], *c.problem, x, &evals);
         const bool exact = sch[s].level == collision::AccuracyLevel::kExact;
         stage_result = detail::CeresLocal(sch[s], c.sets[s], *c.problem, x, exact ? 2 : 4, req.max_evaluations);
@@ -78,15 +83,11 @@ detail::LocalResult RunChain(const Context& c, const Vector6d& start) {
   return r;
 }
 
-Proposal Finish(const Context& c, int index, const Vector6d& start) {
-  const double cpu0 = detail::CpuSeconds();
-  const detail::Problem& problem = *c.problem;
-  const OracleStage& final_stage = c.schedule->back();
-  Proposal p;
-  p.start_index = index;
+// RunChain with the failures turned into a status (never throws, never non-finite).
+detail::LocalResult SafeChain(const Context& c, const Vector6d& start, std::size_t first, std::size_t stop) {
   detail::LocalResult r;
   try {
-    r = RunChain(c, start);
+    r = RunChain(c, start, first, stop);
   } catch (const std::exception& e) {
     r.x = start;
     r.status = SolveStatus::kFailed;
@@ -97,12 +98,22 @@ Proposal Finish(const Context& c, int index, const Vector6d& start) {
     r.status = SolveStatus::kFailed;
     r.message += "; non-finite pose replaced by the start";
   }
+  return r;
+}
+
+// The final settle on the last stage's oracle and the evaluation of the result.
+Proposal Finish(const Context& c, int index, const detail::LocalResult& r) {
+  const detail::Problem& problem = *c.problem;
+  const OracleStage& final_stage = c.schedule->back();
+  Proposal p;
+  p.start_index = index;
   int evals = 0;
   Vector6d x = detail::SettleOnOracle(final_stage, problem, detail::Clamp(problem, r.x), &evals);
   p.X_LU = detail::PoseOf(problem, x);
   p.params = detail::ToParameters(x);
   p.evaluation = EvaluatePose(final_stage, p.X_LU, *problem.request);
   p.score = p.evaluation.score;
+  p.seat_cost = detail::EvaluateSet(final_stage, c.sets.back(), p.X_LU, problem).seat_cost;
   p.status = r.status;
   p.message = r.message;
   if (!p.evaluation.feasible && p.status != SolveStatus::kFailed) {
@@ -110,8 +121,29 @@ Proposal Finish(const Context& c, int index, const Vector6d& start) {
     p.message += "; the penetration limit is not met within the bounds";
   }
   p.evaluations = r.evaluations + evals + 1;
-  p.cpu_seconds = detail::CpuSeconds() - cpu0;
   return p;
+}
+
+// Runs job(i) for i in [0, n) on up to `threads` std::threads; the results land in slots
+// indexed by i, so they do not depend on the thread count. Returns the CPU seconds of the
+// threads other than the caller (the caller's own are on its clock).
+template <typename Job>
+double ParallelFor(std::size_t n, int threads, Job job) {
+  std::atomic<std::size_t> next{0};
+  std::vector<double> cpu(static_cast<std::size_t>(std::max(1, threads)), 0.0);
+  auto worker = [&](int slot) {
+    const double t0 = detail::CpuSeconds();
+    for (std::size_t i = next++; i < n; i = next++) job(i);
+    cpu[static_cast<std::size_t>(slot)] = detail::CpuSeconds() - t0;
+  };
+  const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < count; ++t) pool.emplace_back(worker, t);
+  worker(0);
+  for (auto& t : pool) t.join();
+  double others = 0.0;
+  for (std::size_t t = 1; t < cpu.size(); ++t) others += cpu[t];
+  return others;
 }
 
 std::vector<Vector6d> MakeStarts(const Context& c, int* evaluations) {
@@ -162,33 +194,65 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
   result.pivot_L = problem.pivot_L;
   int global_evals = 0;
   const std::vector<Vector6d> starts = MakeStarts(c, &global_evals);
-  std::vector<Proposal> candidates(starts.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    for (std::size_t i = next++; i < starts.size(); i = next++) {
-      candidates[i] = Finish(c, static_cast<int>(i), starts[i]);
-    }
-  };
-  const int threads = std::min<int>(request.num_threads, static_cast<int>(starts.size()));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-
   result.starts_run = static_cast<int>(starts.size());
   result.total_evaluations = global_evals;
-  result.cpu_seconds = detail::CpuSeconds() - cpu0;
-  for (const Proposal& p : candidates) {
-    result.total_evaluations += p.evaluations;
-    if (threads > 1) result.cpu_seconds += p.cpu_seconds;  // worker threads' CPU time
+  const std::size_t last = schedule.size() - 1;
+  std::vector<Proposal> candidates;
+  double worker_cpu = 0.0;
+  if (request.solver == SolverKind::kCoarseToFine && last > 0 && starts.size() > 1) {
+    // Every start on the coarse stage; only the best distinct coarse seats (by the coarse
+    // seat cost) go on to the finer stages: the fine models see only seats that can win.
+    std::vector<detail::LocalResult> coarse(starts.size());
+    std::vector<double> coarse_cost(starts.size()), coarse_cpu(starts.size());
+    worker_cpu += ParallelFor(starts.size(), request.num_threads, [&](std::size_t i) {
+      const double t0 = detail::CpuSeconds();
+      coarse[i] = SafeChain(c, starts[i], 0, 0);
+      coarse_cost[i] = detail::EvaluateSet(schedule.front(), c.sets.front(), detail::PoseOf(problem, coarse[i].x),
+                                           problem).seat_cost;
+      coarse_cpu[i] = detail::CpuSeconds() - t0;
+    });
+    std::vector<std::size_t> order(starts.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return coarse_cost[a] < coarse_cost[b]; });
+    std::vector<std::size_t> kept;
+    for (const std::size_t i : order) {
+      if (static_cast<int>(kept.size()) >= std::max(1, request.max_proposals)) break;
+      bool distinct = true;
+      for (const std::size_t k : kept) {
+        distinct = distinct && DistinctPoses(detail::PoseOf(problem, coarse[i].x), detail::PoseOf(problem, coarse[k].x),
+                                             problem.ref_points_U, request);
+      }
+      if (distinct) kept.push_back(i);
+    }
+    for (std::size_t i = 0; i < starts.size(); ++i) result.total_evaluations += coarse[i].evaluations;
+    candidates.resize(kept.size());
+    worker_cpu += ParallelFor(kept.size(), request.num_threads, [&](std::size_t k) {
+      const std::size_t i = kept[k];
+      const double t0 = detail::CpuSeconds();
+      detail::LocalResult fine = SafeChain(c, coarse[i].x, 1, last);
+      if (fine.status == SolveStatus::kFailed) fine.message = coarse[i].message + "; " + fine.message;
+      candidates[k] = Finish(c, static_cast<int>(i), fine);
+      candidates[k].evaluations += coarse[i].evaluations;
+      candidates[k].cpu_seconds = coarse_cpu[i] + detail::CpuSeconds() - t0;
+    });
+  } else {
+    candidates.resize(starts.size());
+    worker_cpu += ParallelFor(starts.size(), request.num_threads, [&](std::size_t i) {
+      const double t0 = detail::CpuSeconds();
+      candidates[i] = Finish(c, static_cast<int>(i), SafeChain(c, starts[i], 0, last));
+      candidates[i].cpu_seconds = detail::CpuSeconds() - t0;
+    });
   }
+  for (const Proposal& p : candidates) result.total_evaluations += p.evaluations;
+  result.cpu_seconds = detail::CpuSeconds() - cpu0 + worker_cpu;
   // Best first: feasible before infeasible, then score, then start index (deterministic).
   std::vector<std::size_t> order(candidates.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const Proposal &pa = candidates[a], &pb = candidates[b];
     if (pa.evaluation.feasible != pb.evaluation.feasible) return pa.evaluation.feasible;
-    if (pa.evaluation.feasible) return pa.score > pb.score;
+    if (pa.evaluation.feasible) return std::getenv("OCCLUDE_RANK_SCORE") ? pa.score > pb.score : pa.seat_cost < pb.seat_cost;
     return pa.evaluation.constrained_penetration_mm < pb.evaluation.constrained_penetration_mm;
   });
   for (const std::size_t i : order) {

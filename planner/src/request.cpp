@@ -124,6 +124,11 @@ OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
     }
     collision::OracleOptions o = base_options;
     o.voxel_size_mm = v;
+    // The first of several stages is the wide one: its field reaches kCoarseBandMm so that the
+    // seat objective pulls far starts in (the finer stages only refine).
+    if (s.oracles.empty() && voxel_sizes_mm.size() > 1) {
+      o.sdf_dilation_voxels = std::max(o.sdf_dilation_voxels, static_cast<int>(std::ceil(kCoarseBandMm / v)));
+    }
     s.oracles.push_back(std::make_unique<collision::JawOracle>(lower_L, upper_U, o));
     s.stages.push_back({s.oracles.back().get(), collision::AccuracyLevel::kSubVoxel});
   }

@@ -15,8 +15,11 @@ ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& reque
   s.penetration_allowance_mm = request.seat_penetration_allowance_mm;
   s.attraction_scale_mm = request.seat_scale_mm;
   s.attraction_min_facing = request.seat_min_facing;
-  // Distances are known within the field's band only.
-  s.window_mm = std::min(request.seat_window_mm, stage.oracle->lower_sdf().band_mm());
+  // Distances are known within the field's band only. A wide (coarse) field gets a window
+  // and a Cauchy scale that grow with it, so that far samples still pull.
+  const double band = stage.oracle->lower_sdf().band_mm();
+  s.window_mm = std::min(std::max(request.seat_window_mm, 0.8 * band), band);
+  s.attraction_scale_mm = std::max(request.seat_scale_mm, s.window_mm / 3.0);
   s.range_mm = s.window_mm;
   return s;
 }
@@ -38,7 +41,9 @@ std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& sample
       index.push_back(i);
     }
   }
-  const std::vector<bool> member = SpikeMembers(pen, 2.5 * samples.spacing_mm, cap);
+  const std::vector<bool> member = SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, cap,
+                                                          problem.request->max_penetration_mm,
+                                                          SpikeShallowMm(*problem.request));
   for (std::size_t k = 0; k < pen.size(); ++k) spike[index[k]] = member[k];
   return spike;
 }
@@ -71,7 +76,8 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
   }
   std::vector<char> spike(n, 0);
   if (!pen.empty()) {
-    const std::vector<bool> member = SpikeMembers(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req));
+    const std::vector<bool> member = SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req),
+                                                            req.max_penetration_mm, SpikeShallowMm(req));
     for (std::size_t k = 0; k < pen.size(); ++k) spike[pen_index[k]] = member[k] ? 1 : 0;
   }
   // Pass 2: costs and measures; spike samples are left out of the penalty and the measure.

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 
 #include "occlude/planner/evaluation.h"
 
@@ -35,27 +34,26 @@ std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSa
   const int n = static_cast<int>(samples.size());
   std::vector<int> parent(samples.size());
   std::iota(parent.begin(), parent.end(), 0);
-  std::unordered_map<std::uint64_t, std::vector<int>> cells;
+  // Cells of size link_mm as a sorted (key, sample) list: no allocation per cell.
   auto cell_of = [&](const Eigen::Vector3d& p) {
     return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / link_mm)), static_cast<int>(std::floor(p.y() / link_mm)),
                            static_cast<int>(std::floor(p.z() / link_mm)));
   };
-  for (int i = 0; i < n; ++i) cells[CellKey(cell_of(samples[static_cast<std::size_t>(i)].p_L))].push_back(i);
+  std::vector<std::pair<std::uint64_t, int>> keyed(samples.size());
+  for (int i = 0; i < n; ++i) keyed[static_cast<std::size_t>(i)] = {CellKey(cell_of(samples[static_cast<std::size_t>(i)].p_L)), i};
+  std::sort(keyed.begin(), keyed.end());
   const double link2 = link_mm * link_mm;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d& p = samples[static_cast<std::size_t>(i)].p_L;
     const Eigen::Vector3i c = cell_of(p);
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells.find(CellKey(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells.end()) continue;
-          for (const int j : it->second) {
-            if (j <= i || (samples[static_cast<std::size_t>(j)].p_L - p).squaredNorm() > link2) continue;
-            const int a = Find(parent, i), b = Find(parent, j);
-            if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-          }
-        }
+    for (int d = 0; d < 27; ++d) {
+      const std::uint64_t key = CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1));
+      auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(key, 0));
+      for (; it != keyed.end() && it->first == key; ++it) {
+        const int j = it->second;
+        if (j <= i || (samples[static_cast<std::size_t>(j)].p_L - p).squaredNorm() > link2) continue;
+        const int a = Find(parent, i), b = Find(parent, j);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
       }
     }
   }
@@ -95,6 +93,25 @@ std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, do
     if (!p.spike) continue;
     for (const std::size_t i : p.members) spike[i] = true;
   }
+  return spike;
+}
+
+std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples, double link_mm,
+                                         double max_spike_area_mm2, double limit_mm, double shallow_mm) {
+  std::vector<bool> spike(samples.size(), false);
+  if (max_spike_area_mm2 <= 0.0) return spike;
+  double over_limit = 0.0;
+  std::vector<PenetratingSample> deep;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].depth_mm > limit_mm) over_limit += samples[i].area_mm2;
+    if (samples[i].depth_mm <= shallow_mm) continue;
+    deep.push_back(samples[i]);
+    index.push_back(i);
+  }
+  if (over_limit > kNestedCaps * max_spike_area_mm2) return spike;
+  const std::vector<bool> member = SpikeMembers(deep, link_mm, max_spike_area_mm2);
+  for (std::size_t k = 0; k < deep.size(); ++k) spike[index[k]] = member[k];
   return spike;
 }
 

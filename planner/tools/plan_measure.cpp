@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
     if (const char* fc = std::getenv("OCCLUDE_MEASURE_FACING")) req.seat_min_facing = std::atof(fc);
     if (const char* nm = std::getenv("OCCLUDE_MEASURE_NLOPT")) req.nlopt_local = planner::NloptLocalMethodFromName(nm);
     if (const char* me = std::getenv("OCCLUDE_MEASURE_MAXEVAL")) req.max_evaluations = std::atoi(me);
+    if (const char* k = std::getenv("OCCLUDE_MEASURE_K")) req.max_proposals = std::atoi(k);
+    if (const char* gs = std::getenv("OCCLUDE_MEASURE_GLOBAL")) req.num_global_samples = std::atoi(gs);
     req.num_threads = threads;
     req.seed = static_cast<std::uint32_t>(run + 1);
     const planner::PlanResult res = planner::Plan(schedule.stages, req);

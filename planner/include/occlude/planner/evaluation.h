@@ -69,8 +69,19 @@ std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSa
 /// Per sample: member of a spike patch.
 std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, double link_mm,
                                double max_spike_area_mm2);
+/// SpikeMembers as the penetration measure uses it, cheaply: only samples deeper than
+/// `shallow_mm` are linked (a patch misjudged for its missing shallow rim is at most
+/// 2 shallow_mm deep: harmless when that is below the limit), and none is a spike when the
+/// samples deeper than `limit_mm` cover more than kNestedCaps size caps (deeply nested jaws:
+/// infeasible whatever the spikes, and thousands of samples to link).
+inline constexpr double kNestedCaps = 4.0;
+std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples, double link_mm,
+                                         double max_spike_area_mm2, double limit_mm, double shallow_mm);
 /// The spike-patch size cap the request asks for (0 when outliers are off: kMax).
 double SpikePatchCap(const PlanRequest& request);
+/// The `shallow_mm` the planner links above: half the smaller of the limit and the seat
+/// objective's penetration allowance (at least 0.002 mm).
+double SpikeShallowMm(const PlanRequest& request);
 
 /// The robust penetration measure of a list of (depth > 0, area) samples with `deep` samples
 /// beyond the measured range (counted at `deep_depth_mm`, `deep_area_mm2` each): the deepest

@@ -33,6 +33,9 @@ struct Proposal {
   PoseParameters params;   ///< relative to the request's start pose, about the pivot
   PoseEvaluation evaluation;  ///< on the last stage of the schedule
   double score = 0.0;      ///< evaluation.score
+  /// The seat objective (robust sum of the occlusal gaps plus the penetration penalty) on the
+  /// last stage's occlusal samples at X_LU: the ranking of the proposals (lower is better).
+  double seat_cost = 0.0;
   SolveStatus status = SolveStatus::kFailed;
   std::string message;     ///< solver detail (NLopt/Ceres termination)
   int start_index = 0;     ///< which start produced it (0 = the start pose)

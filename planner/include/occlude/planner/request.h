@@ -115,8 +115,12 @@ struct OwnedSchedule {
   std::vector<std::unique_ptr<collision::JawOracle>> oracles;
   OracleSchedule stages;
 };
+/// Band of the first stage's distance field when the schedule has several stages (mm): wide,
+/// so that starts a few millimetres off still feel the other jaw.
+inline constexpr double kCoarseBandMm = 3.0;
 /// Builds one oracle per voxel size (coarse first, e.g. {0.8, 0.4}) and a schedule querying
-/// each at kSubVoxel, plus a last stage querying the finest at kExact when `exact_last`.
+/// each at kSubVoxel, plus a last stage querying the finest at kExact when `exact_last`. With
+/// several voxel sizes the first oracle's field reaches kCoarseBandMm.
 /// Throws std::invalid_argument for an empty or non-positive voxel list.
 OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
                             std::shared_ptr<const io::TriangleMesh> upper_U,

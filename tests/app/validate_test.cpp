@@ -1,0 +1,136 @@
+// `occlude validate` on the smallest synthetic pair: the magnitudes parser, one run per
+// solver, magnitude and start with the documented columns, the closing rows start at the
+// reference, easy perturbations return within the success bar, the consensus statistics,
+// the charts; and the command itself (files written, bad options rejected with one line).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "commands.h"
+#include "occlude/io/synthetic_jaws.h"
+#include "run_occlude.h"
+#include "test_common.h"
+#include "validate.h"
+
+namespace occlude::app {
+namespace {
+
+TEST(ValidateTest, ParsesMagnitudesAndRejectsBadText) {
+  const auto m = ParseMagnitudes("1:2,2:3,5:10,0:0");
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_EQ(m[2].mm, 5.0);
+  EXPECT_EQ(m[2].deg, 10.0);
+  for (const char* bad : {"", "1-2", "1:", ":2", "a:b", "1:2,", "-1:2", "1:90", "1:2x"}) {
+    try {
+      ParseMagnitudes(bad);
+      if (std::string(bad) != "1:2,") ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find("--magnitudes"), std::string::npos) << e.what();
+    }
+  }
+}
+
+const ValidateResult& SmallRun(ValidateOptions* used = nullptr) {
+  static ValidateOptions options = [] {
+    ValidateOptions o;
+    o.solvers = {planner::SolverKind::kCeres, planner::SolverKind::kCoarseToFine};
+    o.starts = 3;
+    o.magnitudes = {{0.0, 0.0}, {0.5, 1.0}};
+    o.voxels_mm = {0.8, 0.5};
+    o.threads = 2;
+    o.solver_starts = 2;
+    o.global_samples = 6;
+    return o;
+  }();
+  static const ValidateResult result = RunValidation(SyntheticJawPairCase(io::kMinSyntheticTriangles, 1), options);
+  if (used) *used = options;
+  return result;
+}
+
+TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrors) {
+  ValidateOptions options;
+  const ValidateResult& r = SmallRun(&options);
+  ASSERT_EQ(r.runs.size(), 2u * 2u * 3u);
+  for (const ValidateRun& run : r.runs) {
+    const bool closing = run.magnitude.mm == 0.0;
+    if (closing) {
+      EXPECT_NEAR(run.start_error.translation_mm, 0.0, 1e-9);
+      EXPECT_NEAR(run.start_error.rotation_deg, 0.0, 1e-9);
+    } else {
+      // The perturbation lies in the ball; the reference points sit within ~35 mm of the
+      // pivot, so 1 degree moves them by at most 0.6 mm more.
+      EXPECT_LE(run.start_error.rotation_deg, 1.0 + 1e-9);
+      EXPECT_LE(run.start_error.translation_mm, 0.5 + 0.61);
+    }
+    EXPECT_TRUE(run.success) << planner::ToString(run.solver) << " magnitude " << run.magnitude.mm << " start "
+                             << run.start << ": " << run.error.translation_mm << " mm " << run.error.rotation_deg
+                             << " deg";
+    EXPECT_LE(run.constrained_penetration_mm, options.max_penetration_mm + 0.004);
+    EXPECT_GT(run.seconds, 0.0);
+    EXPECT_TRUE(run.X_LU.matrix().allFinite());
+  }
+  ASSERT_EQ(r.summary.size(), 4u);
+  for (const ValidateSummary& s : r.summary) {
+    EXPECT_EQ(s.runs, 3);
+    EXPECT_DOUBLE_EQ(s.success_rate, 1.0);
+    EXPECT_LE(s.median_err_mm, s.p95_err_mm);
+    EXPECT_LE(s.median_consensus_mm, options.success_mm);
+    EXPECT_DOUBLE_EQ(s.within_consensus, 1.0);
+  }
+}
+
+TEST(ValidateTest, CsvHasTheDocumentedColumnsAndChartsArePngs) {
+  ValidateOptions options;
+  const ValidateResult& r = SmallRun(&options);
+  std::istringstream csv(ValidateCsv(r));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("solver,magnitude_mm,magnitude_deg,start,err_mm,err_deg,max_penetration_mm,"
+                         "contact_area_mm2,seconds,success",
+                         0),
+            0u)
+      << header;
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(r.runs.size()));
+  EXPECT_NE(ValidateSummaryCsv(r).find("coarse-to-fine,0.5,1,3,1,"), std::string::npos) << ValidateSummaryCsv(r);
+  const std::string text = ValidateSummaryText(r, options, "test machine");
+  EXPECT_NE(text.find("closing"), std::string::npos);
+  EXPECT_NE(text.find("reference pose as given"), std::string::npos);
+  const auto charts = ValidateCharts(r, options, "test");
+  ASSERT_EQ(charts.size(), 3u);
+  for (const auto& [file, png] : charts) {
+    ASSERT_GT(png.size(), 8u) << file;
+    EXPECT_EQ(png.substr(1, 3), "PNG") << file;
+  }
+}
+
+TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
+  test::TempDir tmp;
+  const test::CommandRun ok = test::Occlude("validate --synthetic 5000 --solver ceres --starts 1 --magnitudes 0.5:1 "
+                                            "--voxels 0.5 --out " + (tmp / "v").string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  for (const char* f : {"validate.csv", "validate-summary.csv", "validate-summary.txt", "stability.png", "error.png",
+                        "time-vs-error.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(tmp / "v" / f)) << f;
+  }
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--synthetic 5000 --magnitudes 1-2", "--magnitudes"},
+      {"--synthetic 5000 --solver simplex", "--solver"},
+      {"--case " + (tmp / "missing").string(), "missing"},
+      {"--synthetic 5000 --voxels 0", "--voxels"},
+      {"--synthetic 100", "triangles"}};
+  for (const auto& [args, expected] : bad) {
+    const test::CommandRun r = test::Occlude("validate " + args + " --out " + (tmp / "bad").string());
+    EXPECT_NE(r.exit_code, 0) << args;
+    // One line of error (CLI11 adds a "Run with --help" hint for option errors).
+    EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(tmp / "bad" / "validate.csv")) << args;
+  }
+}
+
+}  // namespace
+}  // namespace occlude::app
