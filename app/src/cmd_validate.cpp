@@ -23,6 +23,7 @@ struct ValidateArgs {
   bool exact = false;
   int threads = 0;
   int solver_starts = 4;
+  std::string nlopt_local = planner::ToString(planner::PlanRequest{}.nlopt_local);
   double band_mm = 0.1;
   double max_penetration_mm = 0.05;
   std::string out;
@@ -45,6 +46,11 @@ void RunValidateCommand(const ValidateArgs& args) {
   options.exact_last = args.exact;
   options.threads = args.threads;
   options.solver_starts = args.solver_starts;
+  try {
+    options.nlopt_local = planner::NloptLocalMethodFromName(args.nlopt_local);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(std::string("--nlopt-local: ") + e.what());
+  }
   options.contact_band_mm = args.band_mm;
   options.max_penetration_mm = args.max_penetration_mm;
   options.log = &std::cerr;
@@ -97,6 +103,8 @@ void AddValidateCommand(CLI::App& app) {
   cmd->add_option("--solver-starts", args->solver_starts, "Internal starts of coarse-to-fine and nlopt-global")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
+  cmd->add_option("--nlopt-local", args->nlopt_local, "NLopt local method: cobyla, auglag-bobyqa, auglag-sbplx")
+      ->capture_default_str();
   cmd->add_option("--band", args->band_mm, "Contact band, mm")->capture_default_str()->check(BandMm());
   cmd->add_option("--max-penetration", args->max_penetration_mm, "Allowed penetration, mm")
       ->capture_default_str()

@@ -86,6 +86,7 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
   base.num_threads = 1;
   base.max_proposals = 1;
   base.num_global_samples = options.global_samples;
+  base.nlopt_local = options.nlopt_local;
   result.reference = planner::EvaluatePose(last, X_ref, base);
 
   // The perturbed starts, shared by all solvers.

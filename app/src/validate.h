@@ -44,6 +44,7 @@ struct ValidateOptions {
   int threads = 0;         ///< runs in parallel (each single-threaded); 0 = all cores
   int solver_starts = 4;   ///< internal starts of coarse-to-fine and nlopt-global
   int global_samples = 16; ///< their global stage's sampled poses
+  planner::NloptLocalMethod nlopt_local = planner::PlanRequest{}.nlopt_local;
   double contact_band_mm = 0.1;
   double max_penetration_mm = 0.05;
   double bound_margin_mm = 1.5;   ///< search bounds: the magnitude plus these margins

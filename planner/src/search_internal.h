@@ -74,6 +74,9 @@ struct SetEvaluation {
   double smooth_score = 0.0;   ///< attraction-weighted area minus the bilateral penalty
   double contact_area_mm2 = 0.0;
   double robust_penetration_mm = 0.0;
+  /// Smooth penetration excess: sqrt(sum a (depth - limit)+^2 / near-contact area), mm, over the
+  /// non-spike samples (zero when no sample is deeper than the limit; C1 in the pose).
+  double excess_rms_mm = 0.0;
   double max_penetration_mm = 0.0;
   double min_distance_mm = 0.0;  ///< smallest known distance (+inf if none)
   std::size_t deep = 0;

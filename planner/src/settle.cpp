@@ -112,6 +112,8 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
     if (d < 0.0) {
       pen_kept.emplace_back(-d, a);
       e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
+      const double excess = -d - req.max_penetration_mm;
+      if (excess > 0.0) e.excess_rms_mm += a * excess * excess;
     }
     e.smooth_score += a * k;
     const Eigen::Vector3d rel = X_LU * samples.p_U[i] - problem.arch.origin_L;
@@ -120,6 +122,7 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
     }
   }
   e.smooth_score -= req.bilateral_posterior_weight * std::abs(left - right);
+  e.excess_rms_mm = std::sqrt(e.excess_rms_mm / std::max(near_area, 1.0));
   const double deep_depth = stage.oracle->lower_sdf().band_mm();
   const double mean_area = e.deep > 0 ? deep_area / static_cast<double>(e.deep) : 0.0;
   // A cluster stands for spacing^2 of surface; a budget below one cluster would make the

@@ -54,24 +54,28 @@ INSTANTIATE_TEST_SUITE_P(LeastSquaresSolvers, SolverReturnTest,
                            return n;
                          });
 
-// The NLopt solvers minimize the same seat cost derivative-free. With plan_measure (10k
-// triangles, 0.5 mm voxels) COBYLA returns within 0.3 mm in 4 of 4 runs (median 0.13 mm); on
-// this 5k-triangle fixture it stops 0.6 mm away at its evaluation budget, so the bound here is
-// 1 mm (the validation command measures the solvers on the real cases).
-constexpr double kNloptReturnToleranceMm = 1.0;
-TEST(PlanTest, NloptSolversStayFeasible) {
+// The NLopt solvers minimize the same seat cost derivative-free (AUGLAG around BOBYQA by
+// default). Measured with `occlude validate --synthetic 5000 --voxels 0.5 --solver nlopt-local
+// --starts 8 --magnitudes 1:2`: 62 % of the runs within 0.3 mm (COBYLA: 25 %), so from the
+// three fixed perturbations here at least one must return within 0.3 mm, and every result must
+// be feasible and finite.
+TEST(PlanTest, NloptSolversStayFeasibleAndMostlyReturn) {
   const auto& c = Synthetic();
   for (SolverKind kind : {SolverKind::kNloptLocal, SolverKind::kNloptGlobal}) {
-    const PlanRequest req = PerturbedRequest(kind, 1.0, 2.0);
-    const PlanResult res = Plan(c.schedule.stages, req);
-    ASSERT_FALSE(res.proposals.empty());
-    const Proposal& p = res.proposals.front();
-    EXPECT_TRUE(p.evaluation.feasible) << ToString(kind) << " " << p.message;
-    EXPECT_LE(p.evaluation.constrained_penetration_mm, kPenetrationLimitMm);
-    EXPECT_GT(p.evaluation.contact_area_mm2, 1.0);
-    EXPECT_LE(ComparePoses(p.X_LU, c.pair.X_LU, c.points_U).translation_mm, kNloptReturnToleranceMm)
-        << ToString(kind);
-    EXPECT_GT(p.evaluations, 10);
+    int returned = 0;
+    for (int variant = 0; variant < 3; ++variant) {
+      const PlanRequest req = PerturbedRequest(kind, 1.0, 2.0, variant);
+      const PlanResult res = Plan(c.schedule.stages, req);
+      ASSERT_FALSE(res.proposals.empty());
+      const Proposal& p = res.proposals.front();
+      EXPECT_TRUE(p.evaluation.feasible) << ToString(kind) << " " << p.message;
+      EXPECT_LE(p.evaluation.constrained_penetration_mm, kPenetrationLimitMm);
+      EXPECT_TRUE(p.X_LU.matrix().allFinite());
+      EXPECT_GT(p.evaluations, 10);
+      const PoseError e = ComparePoses(p.X_LU, c.pair.X_LU, c.points_U);
+      returned += e.translation_mm <= kReturnToleranceMm && e.rotation_deg <= kReturnToleranceDeg ? 1 : 0;
+    }
+    EXPECT_GE(returned, 1) << ToString(kind);
   }
 }
 
@@ -121,7 +125,7 @@ TEST(PlanTest, ProposalsAreDistinctAndSorted) {
     for (std::size_t j = i + 1; j < res.proposals.size(); ++j) {
       EXPECT_TRUE(DistinctPoses(res.proposals[i].X_LU, res.proposals[j].X_LU, pts, req)) << i << " " << j;
       if (res.proposals[i].evaluation.feasible && res.proposals[j].evaluation.feasible) {
-        EXPECT_GE(res.proposals[i].score, res.proposals[j].score);
+        EXPECT_LE(res.proposals[i].seat_cost, res.proposals[j].seat_cost);
       }
     }
   }

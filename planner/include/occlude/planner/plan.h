@@ -44,7 +44,7 @@ struct Proposal {
 };
 
 struct PlanResult {
-  std::vector<Proposal> proposals;  ///< at most max_proposals, distinct, best score first
+  std::vector<Proposal> proposals;  ///< at most max_proposals, distinct, feasible first, then lowest seat_cost
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot used (L, at the start pose)
   SolverKind solver = SolverKind::kCoarseToFine;
   int starts_run = 0;

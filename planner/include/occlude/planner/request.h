@@ -20,9 +20,9 @@ namespace occlude::planner {
 /// The search methods; every one is a complete solver (see plan.h).
 enum class SolverKind {
   kNloptLocal,    ///< "nlopt-local": constrained local search from each start (NlopLocalMethod)
-  kNloptGlobal,   ///< "nlopt-global": seeded sampling of the bounds, best seeds fed to nlopt-local
+  kNloptGlobal,   ///< "nlopt-global": seeded sampling of the bounds; the best seeds through NLopt on each stage (coarse: all, finer: the best)
   kCeres,         ///< "ceres": least squares on signed-distance residuals from each start
-  kCoarseToFine,  ///< "coarse-to-fine": sampling + least squares on each stage of the schedule
+  kCoarseToFine,  ///< "coarse-to-fine": sampling + Ceres on each stage (coarse: all seeds, finer: the best)
 };
 const char* ToString(SolverKind kind);
 /// Parses a solver name as printed by ToString; throws std::invalid_argument naming "solver"
@@ -51,7 +51,9 @@ struct PlanRequest {
   /// Start (and reference) pose of U in L; parameters and bounds are relative to it.
   Eigen::Isometry3d X_LU_start = Eigen::Isometry3d::Identity();
   SolverKind solver = SolverKind::kCoarseToFine;
-  NloptLocalMethod nlopt_local = NloptLocalMethod::kCobyla;
+  /// Measured on the synthetic pair (1 mm / 2 deg starts, 0.8/0.4 mm): AUGLAG-BOBYQA 4 of 6
+  /// runs within 0.3 mm, COBYLA 0 of 6, AUGLAG-Sbplx 1 of 6.
+  NloptLocalMethod nlopt_local = NloptLocalMethod::kAuglagBobyqa;
 
   double contact_band_mm = 0.1;       ///< contact: 0 <= d <= band
   double max_penetration_mm = 0.05;   ///< constraint on the penetration measure
