@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -35,11 +36,18 @@ inline CLI::Validator PositiveMm() { return MmBetween(0.0, false, 1e6, "a positi
 /// A contact band.
 inline CLI::Validator BandMm() { return MmBetween(0.0, true, 5.0, "a band in mm between 0 and 5"); }
 
+struct CaseConfig;
+/// The output folder of a command: --out when given, else the config's [output] folder;
+/// UserError naming the config file when neither is set.
+std::filesystem::path OutputFolder(const CaseConfig& config, const std::string& out_option);
+
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);
 void AddCollideCommand(CLI::App& app);
 void AddReportCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
 void AddValidateCommand(CLI::App& app);
+void AddProposeCommand(CLI::App& app);
+void AddRefineCommand(CLI::App& app);
 
 }  // namespace occlude::app

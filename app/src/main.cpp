@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   occlude::app::AddSynthCommand(app);
   occlude::app::AddDemoCommand(app);
   occlude::app::AddCollideCommand(app);
+  occlude::app::AddProposeCommand(app);
+  occlude::app::AddRefineCommand(app);
   occlude::app::AddReportCommand(app);
   occlude::app::AddBenchCommand(app);
   occlude::app::AddValidateCommand(app);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <thread>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "commands.h"
 #include "occlude/collision/signed_distance.h"
@@ -17,27 +18,43 @@
 namespace occlude::app {
 namespace {
 
-// The map fields use coarse voxels: Exact() is exact at any voxel size, and a
-// coarse grid keeps the search for a 1 mm reach to a few voxels per vertex.
-constexpr double kMapVoxelMm = 0.4;
 // Contact samples closer than this belong to one spot (samples are ~0.3 mm apart).
 constexpr double kSpotLinkMm = 0.6;
 
-collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
-  collision::VoxelizeOptions options;
-  options.voxel_size_mm = kMapVoxelMm;
-  options.classify_proximity = false;
-  options.classify_interior = false;
-  const collision::VoxelGrid grid = collision::Voxelize(*mesh, options);
-  collision::NarrowBandOptions band;
-  band.dilation_voxels = 0;
-  return collision::NarrowBandSdf::Build(std::move(mesh), grid, band);
+std::uint64_t CellKey(const Eigen::Vector3i& c) {
+  auto u = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
+  return (u(c.x()) << 42) | (u(c.y()) << 21) | u(c.z());
 }
 
-// Signed distance of every vertex (moved into the field's frame by X_FM) to the field's mesh.
+Eigen::Vector3i CellOf(const Eigen::Vector3d& p, double cell) {
+  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
+                         static_cast<int>(std::floor(p.z() / cell)));
+}
+
+// Cells of size `cell` (>= reach) touched by the bounding boxes of the field mesh's triangles:
+// a point with no such cell among its 27 neighbours is farther than `reach` from the mesh.
+std::unordered_set<std::uint64_t> OccupiedCells(const io::TriangleMesh& mesh, double cell) {
+  std::unordered_set<std::uint64_t> cells;
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+    const Eigen::Vector3i lo = CellOf(a.cwiseMin(b).cwiseMin(c), cell), hi = CellOf(a.cwiseMax(b).cwiseMax(c), cell);
+    for (int x = lo.x(); x <= hi.x(); ++x) {
+      for (int y = lo.y(); y <= hi.y(); ++y) {
+        for (int z = lo.z(); z <= hi.z(); ++z) cells.insert(CellKey(Eigen::Vector3i(x, y, z)));
+      }
+    }
+  }
+  return cells;
+}
+
+// Signed distance of every vertex (moved into the field's frame by X_FM) to the field's mesh;
+// vertices farther than `reach` (culled by the occupied cells first) hold kFarValue.
 std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X_FM,
-                                   const collision::NarrowBandSdf& field, double reach) {
+                                   const collision::NarrowBandSdf& field, const io::TriangleMesh& field_mesh,
+                                   double reach) {
   std::vector<float> out(mesh.num_vertices(), render::kFarValue);
+  const double cell = reach * (1.0 + 1e-9);
+  const std::unordered_set<std::uint64_t> occupied = OccupiedCells(field_mesh, cell);
   const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
   const std::size_t chunk = (out.size() + threads - 1) / threads;
   std::vector<std::thread> pool;
@@ -45,7 +62,13 @@ std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Is
     pool.emplace_back([&, k] {
       collision::SignedDistanceSample s;
       for (std::size_t i = k * chunk; i < std::min(out.size(), (k + 1) * chunk); ++i) {
-        if (field.Exact(X_FM * mesh.vertices[i], reach, &s)) out[i] = static_cast<float>(s.distance);
+        const Eigen::Vector3d p = X_FM * mesh.vertices[i];
+        const Eigen::Vector3i c = CellOf(p, cell);
+        bool near = false;
+        for (int d = 0; d < 27 && !near; ++d) {
+          near = occupied.count(CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1))) > 0;
+        }
+        if (near && field.Exact(p, reach, &s)) out[i] = static_cast<float>(s.distance);
       }
     });
   }
@@ -189,32 +212,22 @@ std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, doubl
   return out;
 }
 
-ReportAnalysis AnalyzePose(const CaseConfig& config, const CaseJaws& jaws, const Eigen::Isometry3d& X_LU,
-                           const Progress& progress) {
+ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) {
+  const CaseConfig& config = session.config();
+  const CaseJaws& jaws = session.jaws();
   ReportAnalysis a;
   a.X_LU = X_LU;
   a.voxel_mm = config.VoxelSizeMm();
   a.reach_mm = std::max(1.0, config.report.map_max_mm + 0.25);
-  a.arch = CaseArchFrame(config, *jaws.lower_L, *jaws.upper_U, X_LU);
-  const Eigen::Vector3d occlusal_U = X_LU.linear().transpose() * a.arch.occlusal_L;
-  const Eigen::Vector3d pivot_U = UpperOcclusalCentre(*jaws.upper_U, occlusal_U);
-  a.pivot_L = X_LU * pivot_U;
-  // The pivot of the parameters is the pivot at the reference pose (identity), i.e. pivot_U.
-  a.params = planner::DecomposePose(X_LU, pivot_U, Eigen::Isometry3d::Identity());
+  a.arch = session.arch();
+  // Parameters about the pivot at the pose as given (U = L there), relative to it.
+  a.pivot_L = X_LU * session.pivot_L();
+  a.params = planner::DecomposePose(X_LU, session.pivot_L(), Eigen::Isometry3d::Identity());
 
   double t0 = NowSeconds();
-  progress("building the contact oracle (voxel " + std::to_string(a.voxel_mm).substr(0, 5) + " mm)");
-  collision::OracleOptions options;
-  options.voxel_size_mm = a.voxel_mm;
-  options.sample_spacing_mm = config.sample_spacing_mm;
-  options.arch = a.arch;
-  std::unique_ptr<collision::JawOracle> oracle;
-  try {
-    oracle = std::make_unique<collision::JawOracle>(jaws.lower_L, jaws.upper_U, options);
-  } catch (const collision::VoxelizeError& e) {
-    throw UserError(config.file.string() + ": accuracy.voxel_mm: " + e.what());
-  }
-  a.timings_s.emplace_back("oracle build", NowSeconds() - t0);
+  const collision::JawOracle& oracle = session.FinestOracle();
+  const MapFields& maps = session.Maps();
+  a.timings_s.emplace_back("models (built once per session)", NowSeconds() - t0);
 
   t0 = NowSeconds();
   collision::OracleRequest request;
@@ -222,16 +235,13 @@ ReportAnalysis AnalyzePose(const CaseConfig& config, const CaseJaws& jaws, const
   request.contact_band_mm = config.contact_band_mm;
   request.penetration_search_mm = a.reach_mm;
   request.pivot_L = a.pivot_L;
-  oracle->Query(X_LU, request, &a.oracle);
+  oracle.Query(X_LU, request, &a.oracle);
   a.timings_s.emplace_back("oracle query", NowSeconds() - t0);
 
   t0 = NowSeconds();
-  progress("computing vertex distances for the maps");
-  const collision::NarrowBandSdf lower_field = MapField(jaws.lower_L);
-  const collision::NarrowBandSdf upper_field = MapField(jaws.upper_U);
-  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, lower_field, a.reach_mm);
-  a.lower_vertex_mm = VertexDistances(*jaws.lower_L, X_LU.inverse(), upper_field, a.reach_mm);
-  Attribute(jaws, lower_field, &a);
+  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower, *jaws.lower_L, a.reach_mm);
+  a.lower_vertex_mm = VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper, *jaws.upper_U, a.reach_mm);
+  Attribute(jaws, maps.lower, &a);
   a.timings_s.emplace_back("map distances", NowSeconds() - t0);
   return a;
 }

@@ -16,6 +16,7 @@
 
 #include "case_config.h"
 #include "occlude/collision/oracle.h"
+#include "case_session.h"
 #include "report_case.h"
 
 namespace occlude::app {
@@ -52,13 +53,9 @@ struct ReportAnalysis {
   std::vector<std::pair<std::string, double>> timings_s;  ///< step -> wall seconds
 };
 
-/// Progress callback: a step name, called when a step starts.
-using Progress = std::function<void(const std::string&)>;
-
-/// Builds the oracle and the map distance fields and evaluates the pose.
-/// Throws UserError when the voxel size does not fit the jaws.
-ReportAnalysis AnalyzePose(const CaseConfig& config, const CaseJaws& jaws, const Eigen::Isometry3d& X_LU,
-                           const Progress& progress);
+/// Evaluates the pose on the session's finest oracle and map fields (built on first use:
+/// throws UserError when the voxel size does not fit the jaws).
+ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU);
 
 /// Groups points closer than `link_mm` (single linkage); returns a cluster id per point.
 std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, double link_mm);

@@ -211,7 +211,9 @@ std::string MetricsJson(const ReportInputs& in) {
       {"meshes", {{"lower_triangles", in.jaws->lower_L->num_triangles()},
                   {"upper_triangles", in.jaws->upper_U->num_triangles()}}},
       {"timings_s", timings}};
-  return j.dump(2) + "\n";
+  json out = j;
+  if (!in.search_json.empty()) out["search"] = json::parse(in.search_json);
+  return out.dump(2) + "\n";
 }
 
 std::string PoseJson(const ReportInputs& in) {
@@ -237,7 +239,7 @@ std::string ReportHtml(const ReportInputs& in) {
     << Escape(in.config->name) << "</title><style>" << kStyle << "</style></head><body>\n"
     << "<h1>Occlusion report: " << Escape(in.config->name) << "</h1>\n<p class=\"note\">occlude 0.1.0, " << stamp
     << ". Distances in mm; X<sub>LU</sub> is the pose of the upper jaw in the lower jaw's frame.</p>\n"
-    << PoseSection(in) << MetricsSection(in);
+    << PoseSection(in) << MetricsSection(in) << in.search_html;
   s << "<h2>Contact maps and views</h2>\n";
   for (const auto& p : in.pictures) {
     s << "<figure><img alt=\"" << Escape(p.title) << "\" src=\"data:image/png;base64," << Base64(p.png)

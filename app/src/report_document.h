@@ -23,6 +23,10 @@ struct ReportInputs {
     std::string title, png, file;
   };
   std::vector<Picture> pictures;
+  /// From propose/refine: a JSON object (text) stored under "search" in metrics.json, and an
+  /// HTML fragment (the proposals, the points treated as scan artefacts) after the metrics.
+  std::string search_json;
+  std::string search_html;
 };
 
 std::string MetricsJson(const ReportInputs& in);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <chrono>
 #include <numeric>
 #include <thread>
@@ -137,6 +138,26 @@ Proposal Finish(const Context& c, int index, const detail::LocalResult& r) {
   return p;
 }
 
+// Progress and the wall-clock budget of the local solves.
+struct Tracker {
+  const PlanRequest* request = nullptr;
+  std::chrono::steady_clock::time_point start;
+  int total = 0;
+  std::atomic<int> done{0}, skipped{0};
+  std::mutex mutex;
+  bool OutOfTime() const {
+    return request->max_seconds > 0.0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > request->max_seconds;
+  }
+  void Done() {
+    const int n = ++done;
+    if (request->on_progress) {
+      std::lock_guard<std::mutex> lock(mutex);
+      request->on_progress(n, total);
+    }
+  }
+};
+
 // Runs job(i) for i in [0, n) on up to `threads` std::threads; the results land in slots
 // indexed by i, so they do not depend on the thread count. Returns the CPU seconds of the
 // threads other than the caller (the caller's own are on its clock).
@@ -207,26 +228,39 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
   result.pivot_L = problem.pivot_L;
   int global_evals = 0;
   const std::vector<Vector6d> starts = MakeStarts(c, &global_evals);
-  result.starts_run = static_cast<int>(starts.size());
   result.total_evaluations = global_evals;
   const std::size_t last = schedule.size() - 1;
   std::vector<Proposal> candidates;
   double worker_cpu = 0.0;
+  Tracker tracker;
+  tracker.request = &request;
+  tracker.start = std::chrono::steady_clock::now();
   const bool staged = request.solver == SolverKind::kCoarseToFine || request.solver == SolverKind::kNloptGlobal;
   if (staged && last > 0 && starts.size() > 1) {
     // Every start on the coarse stage; only the best distinct coarse seats (by the coarse
     // seat cost) go on to the finer stages: the fine models see only seats that can win.
     std::vector<detail::LocalResult> coarse(starts.size());
     std::vector<double> coarse_cost(starts.size()), coarse_cpu(starts.size());
+    std::vector<char> ran(starts.size(), 0);
+    const std::size_t refine = std::min<std::size_t>(starts.size(), static_cast<std::size_t>(std::max(1, request.max_proposals)));
+    tracker.total = static_cast<int>(starts.size() + refine);
     worker_cpu += ParallelFor(starts.size(), request.num_threads, [&](std::size_t i) {
+      if (i > 0 && tracker.OutOfTime()) {  // the start pose itself always runs
+        ++tracker.skipped;
+        return;
+      }
       const double t0 = detail::CpuSeconds();
       coarse[i] = SafeChain(c, starts[i], 0, 0);
       coarse_cost[i] = detail::EvaluateSet(schedule.front(), c.sets.front(), detail::PoseOf(problem, coarse[i].x),
                                            problem).seat_cost;
       coarse_cpu[i] = detail::CpuSeconds() - t0;
+      ran[i] = 1;
+      tracker.Done();
     });
-    std::vector<std::size_t> order(starts.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      if (ran[i]) order.push_back(i);
+    }
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return coarse_cost[a] < coarse_cost[b]; });
     std::vector<std::size_t> kept;
@@ -239,7 +273,10 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
       }
       if (distinct) kept.push_back(i);
     }
-    for (std::size_t i = 0; i < starts.size(); ++i) result.total_evaluations += coarse[i].evaluations;
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      if (ran[i]) result.total_evaluations += coarse[i].evaluations;
+    }
+    tracker.total = static_cast<int>(starts.size() - static_cast<std::size_t>(tracker.skipped.load()) + kept.size());
     candidates.resize(kept.size());
     worker_cpu += ParallelFor(kept.size(), request.num_threads, [&](std::size_t k) {
       const std::size_t i = kept[k];
@@ -249,15 +286,31 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
       candidates[k] = Finish(c, static_cast<int>(i), fine);
       candidates[k].evaluations += coarse[i].evaluations;
       candidates[k].cpu_seconds = coarse_cpu[i] + detail::CpuSeconds() - t0;
+      tracker.Done();
     });
   } else {
     candidates.resize(starts.size());
+    std::vector<char> ran(starts.size(), 0);
+    tracker.total = static_cast<int>(starts.size());
     worker_cpu += ParallelFor(starts.size(), request.num_threads, [&](std::size_t i) {
+      if (i > 0 && tracker.OutOfTime()) {
+        ++tracker.skipped;
+        return;
+      }
       const double t0 = detail::CpuSeconds();
       candidates[i] = Finish(c, static_cast<int>(i), SafeChain(c, starts[i], 0, last));
       candidates[i].cpu_seconds = detail::CpuSeconds() - t0;
+      ran[i] = 1;
+      tracker.Done();
     });
+    std::vector<Proposal> kept;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (ran[i]) kept.push_back(std::move(candidates[i]));
+    }
+    candidates = std::move(kept);
   }
+  result.starts_skipped = tracker.skipped.load();
+  result.starts_run = static_cast<int>(starts.size()) - result.starts_skipped;
   for (const Proposal& p : candidates) result.total_evaluations += p.evaluations;
   result.cpu_seconds = detail::CpuSeconds() - cpu0 + worker_cpu;
   // Best first: feasible before infeasible, then the seat cost (the contact area at the limit

@@ -76,6 +76,7 @@ void ValidateRequest(const PlanRequest& r) {
   if (!(std::isfinite(r.spike_patch_max_mm2) && r.spike_patch_max_mm2 >= 0.0)) {
     fail("spike_patch_max_mm2: must be finite and >= 0 (0 turns spike patches off; default 5)");
   }
+  if (!(std::isfinite(r.max_seconds) && r.max_seconds >= 0.0)) fail("max_seconds: must be finite and >= 0 (0 = no budget)");
   if (!finite_pos(r.seat_window_mm)) fail("seat_window_mm: must be finite and > 0 (default 1.0)");
   if (!finite_pos(r.seat_scale_mm)) fail("seat_scale_mm: must be finite and > 0 (default 0.3)");
   if (!(std::isfinite(r.seat_penetration_allowance_mm) && r.seat_penetration_allowance_mm >= 0.0)) {
@@ -110,6 +111,18 @@ void ValidateRequest(const PlanRequest& r) {
   if (r.max_evaluations < 10) fail("max_evaluations: must be >= 10");
 }
 
+collision::OracleOptions StageOracleOptions(const collision::OracleOptions& base,
+                                            const std::vector<double>& voxel_sizes_mm, std::size_t index) {
+  collision::OracleOptions o = base;
+  o.voxel_size_mm = voxel_sizes_mm.at(index);
+  // The first of several stages is the wide one: its field reaches kCoarseBandMm so that the
+  // seat objective pulls far starts in (the finer stages only refine).
+  if (index == 0 && voxel_sizes_mm.size() > 1) {
+    o.sdf_dilation_voxels = std::max(o.sdf_dilation_voxels, static_cast<int>(std::ceil(kCoarseBandMm / o.voxel_size_mm)));
+  }
+  return o;
+}
+
 OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
                             std::shared_ptr<const io::TriangleMesh> upper_U,
                             const std::vector<double>& voxel_sizes_mm, bool exact_last,
@@ -122,13 +135,7 @@ OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
     if (!(std::isfinite(v) && v > 0.0)) {
       throw std::invalid_argument("BuildSchedule: voxel size " + std::to_string(v) + " must be > 0 mm");
     }
-    collision::OracleOptions o = base_options;
-    o.voxel_size_mm = v;
-    // The first of several stages is the wide one: its field reaches kCoarseBandMm so that the
-    // seat objective pulls far starts in (the finer stages only refine).
-    if (s.oracles.empty() && voxel_sizes_mm.size() > 1) {
-      o.sdf_dilation_voxels = std::max(o.sdf_dilation_voxels, static_cast<int>(std::ceil(kCoarseBandMm / v)));
-    }
+    const collision::OracleOptions o = StageOracleOptions(base_options, voxel_sizes_mm, s.oracles.size());
     s.oracles.push_back(std::make_unique<collision::JawOracle>(lower_L, upper_U, o));
     s.stages.push_back({s.oracles.back().get(), collision::AccuracyLevel::kSubVoxel});
   }

@@ -6,6 +6,8 @@
 // writes every file, and bad inputs give one line, non-zero exit and no files.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -38,6 +40,7 @@ const std::string kSyntheticConfig = "[synthetic]\ntriangles = 5000\nseed = 1\n[
 
 struct Fixture {
   app::CaseConfig config;
+  std::unique_ptr<app::CaseSession> session;
   app::CaseJaws jaws;
   app::ReportAnalysis truth, pushed;
 };
@@ -46,11 +49,11 @@ const Fixture& Shared() {
   static const Fixture* f = [] {
     auto* x = new Fixture;
     x->config = app::ParseCaseConfig(kSyntheticConfig, "synthetic.toml");
-    x->jaws = app::LoadCaseJaws(x->config);
-    const auto quiet = [](const std::string&) {};
-    x->truth = app::AnalyzePose(x->config, x->jaws, Eigen::Isometry3d::Identity(), quiet);
+    x->session = std::make_unique<app::CaseSession>(x->config);
+    x->jaws = x->session->jaws();
+    x->truth = app::AnalyzePose(*x->session, Eigen::Isometry3d::Identity());
     const Eigen::Isometry3d down(Eigen::Translation3d(0, -0.2, 0));
-    x->pushed = app::AnalyzePose(x->config, x->jaws, down, quiet);
+    x->pushed = app::AnalyzePose(*x->session, down);
     return x;
   }();
   return *f;

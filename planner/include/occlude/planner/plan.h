@@ -47,7 +47,8 @@ struct PlanResult {
   std::vector<Proposal> proposals;  ///< at most max_proposals, distinct, feasible first, then lowest seat_cost
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot used (L, at the start pose)
   SolverKind solver = SolverKind::kCoarseToFine;
-  int starts_run = 0;
+  int starts_run = 0;      ///< local solves run (fewer than planned when max_seconds ran out)
+  int starts_skipped = 0;  ///< local solves skipped by max_seconds
   int total_evaluations = 0;
   double cpu_seconds = 0.0;   ///< sum of thread CPU time of all starts and the global stage
   double wall_seconds = 0.0;

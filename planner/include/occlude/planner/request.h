@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -98,6 +99,11 @@ struct PlanRequest {
   double distinct_translation_mm = 0.5;  ///< proposals differ by more than this at a reference
   double distinct_rotation_deg = 2.0;    ///< point, or by more than this rotation
   int max_evaluations = 600;    ///< oracle queries per local solve (per stage)
+  /// Wall-clock budget (s) of the local solves: starts not begun by then are skipped (the
+  /// result says how many ran); 0 = no budget.
+  double max_seconds = 0.0;
+  /// Called (from the solver threads, serialized) after each local solve: solves done, total.
+  std::function<void(int done, int total)> on_progress;
 };
 
 /// Throws std::invalid_argument naming the first invalid field of `request` and how to fix it.
@@ -124,6 +130,10 @@ inline constexpr double kCoarseBandMm = 3.0;
 /// each at kSubVoxel, plus a last stage querying the finest at kExact when `exact_last`. With
 /// several voxel sizes the first oracle's field reaches kCoarseBandMm.
 /// Throws std::invalid_argument for an empty or non-positive voxel list.
+/// The oracle options of stage `index` of a schedule with these voxel sizes (what
+/// BuildSchedule uses; for callers that build the oracles themselves).
+collision::OracleOptions StageOracleOptions(const collision::OracleOptions& base,
+                                            const std::vector<double>& voxel_sizes_mm, std::size_t index);
 OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
                             std::shared_ptr<const io::TriangleMesh> upper_U,
                             const std::vector<double>& voxel_sizes_mm, bool exact_last,

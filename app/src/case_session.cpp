@@ -1,0 +1,106 @@
+// A case's models, built once (see case_session.h).
+#include "case_session.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "commands.h"
+#include "occlude/collision/voxel_grid.h"
+
+namespace occlude::app {
+namespace {
+
+// The map fields use coarse voxels: Exact() is exact at any voxel size, and a coarse grid
+// keeps the search for a 1 mm reach to a few voxels per vertex.
+constexpr double kMapVoxelMm = 0.4;
+
+collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
+  collision::VoxelizeOptions options;
+  options.voxel_size_mm = kMapVoxelMm;
+  options.classify_proximity = false;
+  options.classify_interior = false;
+  const collision::VoxelGrid grid = collision::Voxelize(*mesh, options);
+  collision::NarrowBandOptions band;
+  band.dilation_voxels = 0;
+  return collision::NarrowBandSdf::Build(std::move(mesh), grid, band);
+}
+
+std::string Mm(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<double> ScheduleVoxels(const CaseConfig& config) {
+  const double v = config.VoxelSizeMm();
+  if (v < 0.4) return {0.8, 0.4, v};
+  return {std::max(0.8, 2.0 * v), v};
+}
+
+CaseSession::CaseSession(const CaseConfig& config) : config_(config) {
+  StepClock clock;
+  clock.Start("loaded the meshes");
+  jaws_ = LoadCaseJaws(config_);
+  clock.Start("estimated the arch frame");
+  arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
+  pivot_L_ = config_.start.pivot_mm.value_or(UpperOcclusalCentre(*jaws_.upper_U, arch_.occlusal_L));
+}
+
+Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }
+
+const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
+  const std::vector<double> voxels = ScheduleVoxels(config_);
+  if (oracles_.empty()) oracles_.resize(voxels.size());
+  if (!oracles_[index]) {
+    collision::OracleOptions base;
+    base.sample_spacing_mm = config_.sample_spacing_mm;
+    base.arch = arch_;
+    StepClock clock;
+    clock.Start("built the " + Mm(voxels[index]) + " mm contact oracle");
+    try {
+      oracles_[index] = std::make_unique<collision::JawOracle>(
+          jaws_.lower_L, jaws_.upper_U, planner::StageOracleOptions(base, voxels, index));
+    } catch (const collision::VoxelizeError& e) {
+      throw UserError(config_.file.string() + ": accuracy: " + e.what());
+    }
+  }
+  return *oracles_[index];
+}
+
+const planner::OracleSchedule& CaseSession::Schedule() {
+  if (stages_.empty()) {
+    const std::size_t n = ScheduleVoxels(config_).size();
+    for (std::size_t i = 0; i < n; ++i) stages_.push_back({&Oracle(i), collision::AccuracyLevel::kSubVoxel});
+  }
+  return stages_;
+}
+
+const collision::JawOracle& CaseSession::FinestOracle() { return Oracle(ScheduleVoxels(config_).size() - 1); }
+
+const MapFields& CaseSession::Maps() {
+  if (!maps_) {
+    StepClock clock;
+    clock.Start("built the distance fields of the maps");
+    maps_ = std::make_unique<MapFields>(MapFields{MapField(jaws_.lower_L), MapField(jaws_.upper_U)});
+  }
+  return *maps_;
+}
+
+bool CaseSession::Reusable(const CaseConfig& other) const {
+  auto same_files = [](const std::optional<JawFiles>& a, const std::optional<JawFiles>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    return !a || (a->files == b->files && a->parts == b->parts);
+  };
+  const bool same_synthetic =
+      config_.synthetic.has_value() == other.synthetic.has_value() &&
+      (!config_.synthetic ||
+       (config_.synthetic->triangles == other.synthetic->triangles && config_.synthetic->seed == other.synthetic->seed));
+  return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) && same_synthetic &&
+         config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
+         ScheduleVoxels(config_) == ScheduleVoxels(other) && config_.sample_spacing_mm == other.sample_spacing_mm &&
+         config_.start.pivot_mm == other.start.pivot_mm;
+}
+
+}  // namespace occlude::app

@@ -1,0 +1,72 @@
+// A case as `propose`, `refine` and `report` work on it: the meshes, the arch frame, the
+// rotation pivot, the planner's oracle schedule, and the report's map fields, each built once
+// on first use and kept (so `refine --watch` pays for the trees only once). Building steps
+// that take over a second are reported on stderr.
+//
+// Frames: lower in L, upper in U as the case gives it (X_LU = identity is the pose as
+// scanned); the arch frame and the pivot are taken at that pose. Poses in the config and in
+// the outputs are about pivot_L (planner::ComposePose with the reference = identity).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "case_config.h"
+#include "occlude/collision/signed_distance.h"
+#include "occlude/planner/request.h"
+#include "progress.h"
+#include "report_case.h"
+
+namespace occlude::app {
+
+/// The voxel sizes of the planner's schedule for a config: coarse to fine, ending at the
+/// config's voxel size ({0.8, 0.4, v} for v < 0.4, else {max(0.8, 2 v), v}).
+std::vector<double> ScheduleVoxels(const CaseConfig& config);
+
+/// Exact distance fields of both meshes for the report's vertex maps.
+struct MapFields {
+  collision::NarrowBandSdf lower, upper;
+};
+
+class CaseSession {
+ public:
+  /// Loads the meshes of `config` (throws UserError naming the file).
+  explicit CaseSession(const CaseConfig& config);
+
+  const CaseConfig& config() const { return config_; }
+  const CaseJaws& jaws() const { return jaws_; }
+  const collision::ArchFrame& arch() const { return arch_; }
+  /// The rotation pivot in L (at identity U = L): the config's pivot_mm or the centre of the
+  /// upper arch's occlusal surface.
+  const Eigen::Vector3d& pivot_L() const { return pivot_L_; }
+  /// The start pose of the config about pivot_L().
+  Eigen::Isometry3d ConfigStartPose() const;
+
+  /// The planner's schedule (built on first use): ScheduleVoxels sub-voxel stages.
+  const planner::OracleSchedule& Schedule();
+  /// The finest oracle of the schedule (the report's).
+  const collision::JawOracle& FinestOracle();
+  const MapFields& Maps();
+
+  /// True when `other` can reuse this session's models (same meshes, units, up axis, voxel
+  /// sizes, sample spacing and pivot); otherwise a new session is needed.
+  bool Reusable(const CaseConfig& other) const;
+  /// Takes the non-model settings of `other` (band, limits, solver, bounds, start, adjust,
+  /// output, report) after Reusable(other).
+  void UpdateSettings(const CaseConfig& other) { config_ = other; }
+
+ private:
+  CaseConfig config_;
+  CaseJaws jaws_;
+  collision::ArchFrame arch_;
+  Eigen::Vector3d pivot_L_ = Eigen::Vector3d::Zero();
+  /// One oracle per schedule stage, built on demand (the report needs only the finest).
+  std::vector<std::unique_ptr<collision::JawOracle>> oracles_;
+  planner::OracleSchedule stages_;
+  const collision::JawOracle& Oracle(std::size_t index);
+  std::unique_ptr<MapFields> maps_;
+};
+
+}  // namespace occlude::app
