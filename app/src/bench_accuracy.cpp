@@ -1,0 +1,369 @@
+// The speed-against-accuracy run of `occlude bench --accuracy` (see
+// bench_accuracy.h): builds each method once, queries it at every pose, turns
+// its answer into claims and scores them (bench_accuracy_score.h).
+#include "bench_accuracy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <ostream>
+#include <random>
+
+#include "bench_accuracy_score.h"
+#include "bench_accuracy_truth.h"
+#include "bench_poses.h"
+#include "fcl_peer.h"
+#include "occlude/collision/collide.h"
+#include "occlude/collision/oracle.h"
+
+namespace occlude::app {
+namespace {
+
+using collision::AccuracyLevel;
+using collision::SphereMode;
+
+constexpr SphereMode kModes[] = {SphereMode::kSimple, SphereMode::kOptimized,
+                                 SphereMode::kExplicit};
+
+void Log(const AccuracyOptions& options, const std::string& line) {
+  if (options.log) *options.log << "accuracy: " << line << std::endl;
+}
+
+// One warm-up call, then `reps` timed calls (thread CPU, us) appended to `us`.
+template <class F>
+void TimeInto(std::vector<double>* us, int reps, F&& f) {
+  f();
+  for (int i = 0; i < reps; ++i) {
+    const double t0 = ThreadCpuSeconds();
+    f();
+    us->push_back(1e6 * (ThreadCpuSeconds() - t0));
+  }
+}
+
+// Nearest-rank percentile of a sorted sample (q in (0, 1]); NaN when empty.
+double Percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
+}
+
+// A row being measured: its times and its score.
+struct Method {
+  AccuracyRow row;
+  std::vector<double> us;
+  Score score;
+};
+
+Method NewMethod(const std::string& method, const std::string& variant, const std::string& query,
+                 const std::string& level, double voxel_mm) {
+  Method m;
+  m.row.method = method;
+  m.row.variant = variant;
+  m.row.query = query;
+  m.row.level = level;
+  m.row.voxel_mm = voxel_mm;
+  return m;
+}
+
+void Merge(const Score& from, Score* to) {
+  to->errors.insert(to->errors.end(), from.errors.begin(), from.errors.end());
+  to->pen_errors.insert(to->pen_errors.end(), from.pen_errors.begin(), from.pen_errors.end());
+  to->claims += from.claims;
+  to->unscored += from.unscored;
+  to->truth_contacts += from.truth_contacts;
+  to->truth_half += from.truth_half;
+  to->missed += from.missed;
+  to->missed_half += from.missed_half;
+  to->false_contacts += from.false_contacts;
+  to->false_double += from.false_double;
+  to->contacts_defined = to->contacts_defined && from.contacts_defined;
+}
+
+AccuracyRow Finish(Method m, int poses) {
+  AccuracyRow& r = m.row;
+  r.poses = poses;
+  r.us = Summarize(&m.us);  // sorts
+  r.p95_us = Percentile(m.us, 0.95);
+  std::sort(m.score.errors.begin(), m.score.errors.end());
+  r.median_err_mm = Percentile(m.score.errors, 0.5);
+  r.p95_err_mm = Percentile(m.score.errors, 0.95);
+  r.max_err_mm = m.score.errors.empty() ? r.p95_err_mm : m.score.errors.back();
+  std::sort(m.score.pen_errors.begin(), m.score.pen_errors.end());
+  r.pen_err_median_mm = Percentile(m.score.pen_errors, 0.5);
+  r.pen_err_max_mm = m.score.pen_errors.empty() ? r.pen_err_median_mm : m.score.pen_errors.back();
+  r.claims = m.score.claims;
+  r.unscored = m.score.unscored;
+  r.contacts_defined = m.score.contacts_defined;
+  r.truth_contacts = m.score.truth_contacts;
+  r.truth_half = m.score.truth_half;
+  r.missed = m.score.missed;
+  r.missed_half = m.score.missed_half;
+  r.false_contacts = m.score.false_contacts;
+  r.false_double = m.score.false_double;
+  return r;
+}
+
+// ---- Answers: each query's result as claims -------------------------------
+
+Answer OracleAnswer(const collision::JawOracle& oracle, const collision::OracleResult& result,
+                    const Eigen::Isometry3d& X_LU, double spacing_mm) {
+  Answer a;
+  const bool voxel = result.level == AccuracyLevel::kVoxel;
+  a.cover = voxel ? Cover::kVoxel : Cover::kRadius;
+  a.radius_mm = spacing_mm;
+  a.grid = &oracle.upper_tree().grid();
+  a.has_depth = true;
+  a.max_penetration_mm = result.max_penetration_mm;
+  const Eigen::Isometry3d X_UL = X_LU.inverse();
+  for (const auto* list : {&result.contacts, &result.penetrations}) {
+    for (const collision::SurfacePoint& p : *list) {
+      Claim c;
+      c.p_L = p.p_L;
+      c.d_mm = p.distance_mm;
+      if (voxel) c.element = SurfaceVoxelOf(*a.grid, X_UL * p.p_L);
+      a.claims.push_back(c);
+    }
+  }
+  return a;
+}
+
+// Upper voxels of the voxel pairs, each claimed within delta.
+Answer PairsVoxelAnswer(const collision::SphereTree& upper, const collision::CollisionResult& r,
+                        double delta_mm) {
+  Answer a;
+  a.region = true;
+  a.cover = Cover::kVoxel;
+  a.grid = &upper.grid();
+  std::vector<std::uint32_t> voxels;
+  for (const collision::VoxelPair& p : r.pairs) voxels.push_back(p.voxel_b);
+  std::sort(voxels.begin(), voxels.end());
+  voxels.erase(std::unique(voxels.begin(), voxels.end()), voxels.end());
+  for (const std::uint32_t v : voxels) {
+    Claim c;
+    c.d_mm = delta_mm;
+    c.element = v;
+    a.claims.push_back(c);
+  }
+  return a;
+}
+
+// Per upper triangle of the exact pairs, its closest approach (point, distance).
+Answer PairsExactAnswer(const collision::CollisionResult& r) {
+  Answer a;
+  a.cover = Cover::kTriangle;
+  std::map<std::uint32_t, const collision::TriangleContact*> closest;
+  for (const collision::TriangleContact& c : r.contacts) {
+    auto [it, inserted] = closest.emplace(c.triangle_b, &c);
+    if (!inserted && c.distance_mm < it->second->distance_mm) it->second = &c;
+  }
+  for (const auto& [t, c] : closest) {
+    Claim claim;
+    claim.p_L = c->p_A_on_b;
+    claim.d_mm = c->distance_mm;
+    claim.element = t;
+    a.claims.push_back(claim);
+  }
+  return a;
+}
+
+std::vector<collision::VoxelPair> SortedPairs(const collision::CollisionResult& r) {
+  std::vector<collision::VoxelPair> pairs = r.pairs;
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> ContactKeys(
+    const collision::CollisionResult& r) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keys;
+  for (const auto& c : r.contacts) keys.emplace_back(c.triangle_a, c.triangle_b);
+  return keys;  // already sorted by (a, b)
+}
+
+}  // namespace
+
+std::vector<Eigen::Isometry3d> AccuracyPoses(const BenchCase& bc, const AccuracyOptions& options) {
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int n = std::max(1, options.poses);
+  std::vector<double> offsets;
+  for (int k = 0; k < n; ++k) {
+    offsets.push_back(options.offset_lo_mm +
+                      (options.offset_hi_mm - options.offset_lo_mm) * (k + unit(rng)) / n);
+  }
+  // Two poses per offset, the second jittered: keep the jittered one.
+  const auto sweep =
+      SweepPoses(bc, offsets, 2, options.jitter_deg, options.jitter_mm, options.seed + 1);
+  std::vector<Eigen::Isometry3d> poses;
+  for (const auto& at : sweep) poses.push_back(at[1]);
+  return poses;
+}
+
+std::vector<AccuracyRow> RunAccuracy(const BenchCase& bc, const AccuracyOptions& options) {
+  const std::vector<Eigen::Isometry3d> poses = AccuracyPoses(bc, options);
+  const int np = static_cast<int>(poses.size());
+  Log(options, "ground truth: lower distance grid and upper samples at " +
+                   std::to_string(options.truth_spacing_mm) + " mm");
+  const LowerDistance lower(bc.lower_L);
+  const UpperSamples samples(bc.upper_U, options.truth_spacing_mm);
+  std::vector<PoseTruth> truths;
+  std::size_t contacts = 0;
+  for (const auto& X : poses) {
+    truths.emplace_back(lower, samples, X, options.delta_mm);
+    contacts += truths.back().contact_ids().size();
+  }
+  Log(options, std::to_string(samples.size()) + " upper samples; " + std::to_string(contacts) +
+                   " truth contacts over " + std::to_string(np) + " poses");
+  std::vector<AccuracyRow> rows;
+
+  if (options.fcl && FclPeer::Available()) {
+    for (const FclBv bv : {FclBv::kOBB, FclBv::kOBBRSS}) {
+      const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
+      const FclPeer peer(*bc.lower_L, *bc.upper_U, bv);
+      Method all = NewMethod("fcl", variant, "collide-all", "exact", std::nan(""));
+      Method dist = NewMethod("fcl", variant, "distance", "exact", std::nan(""));
+      for (int k = 0; k < np; ++k) {
+        const Eigen::Isometry3d& X = poses[static_cast<std::size_t>(k)];
+        TimeInto(&all.us, options.reps, [&] { (void)peer.CollideAll(X); });
+        Answer a;
+        a.region = true;
+        a.cover = Cover::kTriangle;
+        std::vector<std::size_t> tris;
+        for (const auto& [lo, up] : peer.IntersectingPairs(X)) tris.push_back(up);
+        std::sort(tris.begin(), tris.end());
+        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+        for (const std::size_t t : tris)
+          a.claims.push_back({Eigen::Vector3d::Zero(), 0.0, static_cast<std::int64_t>(t)});
+        ScoreAnswer(a, &truths[static_cast<std::size_t>(k)], &all.score);
+        if (bv == FclBv::kOBBRSS) {
+          FclQueryResult r;
+          TimeInto(&dist.us, options.reps, [&] { r = peer.Distance(X); });
+          Answer d;
+          d.cover = Cover::kNone;
+          d.claims.push_back({r.p_L_on_upper, r.distance_mm, -1});
+          ScoreAnswer(d, &truths[static_cast<std::size_t>(k)], &dist.score);
+        }
+      }
+      all.row.build_s = dist.row.build_s = peer.build_seconds();
+      all.row.bytes = dist.row.bytes = peer.approx_bytes();
+      rows.push_back(Finish(std::move(all), np));
+      if (bv == FclBv::kOBBRSS) rows.push_back(Finish(std::move(dist), np));
+      Log(options, "FCL " + variant + " done");
+    }
+  }
+
+  for (const double voxel : options.voxels_mm) {
+    const double t0 = NowSeconds();
+    const collision::OracleOptions oracle_options = OracleOptionsFor(voxel);
+    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, oracle_options);
+    const double oracle_s = NowSeconds() - t0;
+    const collision::SphereTree& lower_tree = oracle.lower_tree();
+    const collision::SphereTree& upper_tree = oracle.upper_tree();
+    Log(options, std::to_string(voxel) + " mm: oracle built in " + std::to_string(oracle_s) +
+                     " s; querying");
+    const std::pair<AccuracyLevel, const char*> levels[] = {{AccuracyLevel::kVoxel, "voxel"},
+                                                            {AccuracyLevel::kSubVoxel, "subvoxel"},
+                                                            {AccuracyLevel::kExact, "exact"}};
+    std::vector<Method> oracle_rows, voxel_rows, exact_rows;
+    for (const auto& [level, name] : levels) {
+      oracle_rows.push_back(NewMethod("ist", "explicit", "oracle", name, voxel));
+    }
+    for (const SphereMode mode : kModes) {
+      voxel_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "voxel", voxel));
+      exact_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "exact", voxel));
+    }
+    for (int k = 0; k < np; ++k) {
+      const Eigen::Isometry3d& X = poses[static_cast<std::size_t>(k)];
+      PoseTruth& truth = truths[static_cast<std::size_t>(k)];
+      for (std::size_t l = 0; l < 3; ++l) {
+        collision::OracleRequest req;
+        req.level = levels[l].first;
+        req.contact_band_mm = options.delta_mm;
+        req.keep_points = false;
+        collision::OracleResult result;
+        TimeInto(&oracle_rows[l].us, options.reps, [&] { oracle.Query(X, req, &result); });
+        req.keep_points = true;
+        oracle.Query(X, req, &result);
+        ScoreAnswer(OracleAnswer(oracle, result, X, oracle_options.sample_spacing_mm), &truth,
+                    &oracle_rows[l].score);
+      }
+      // The three sphere modes report the same pairs (collide.h); each is
+      // timed, and scored once unless its answer differs.
+      for (const bool exact : {false, true}) {
+        std::vector<Method>& group = exact ? exact_rows : voxel_rows;
+        collision::CollisionRequest req;
+        req.delta_mm = options.delta_mm;
+        req.exact = exact;
+        collision::CollisionResult results[3];
+        for (std::size_t m = 0; m < 3; ++m) {
+          req.spheres = kModes[m];
+          TimeInto(&group[m].us, options.reps,
+                   [&] { collision::Collide(lower_tree, upper_tree, X, req, &results[m]); });
+        }
+        Score first;
+        const Answer answer = exact ? PairsExactAnswer(results[2])
+                                    : PairsVoxelAnswer(upper_tree, results[2], options.delta_mm);
+        ScoreAnswer(answer, &truth, &first);
+        for (std::size_t m = 0; m < 3; ++m) {
+          const bool same = exact ? ContactKeys(results[m]) == ContactKeys(results[2])
+                                  : SortedPairs(results[m]) == SortedPairs(results[2]);
+          if (same) {
+            Merge(first, &group[m].score);
+          } else {
+            Log(options, std::string("warning: ") + collision::ToString(kModes[m]) +
+                             " spheres answered differently from explicit; scored separately");
+            ScoreAnswer(exact ? PairsExactAnswer(results[m])
+                              : PairsVoxelAnswer(upper_tree, results[m], options.delta_mm),
+                        &truth, &group[m].score);
+          }
+        }
+      }
+      truth.ClearCache();
+    }
+    const auto& ls = lower_tree.stats();
+    const auto& us = upper_tree.stats();
+    for (Method& m : oracle_rows) {
+      m.row.build_s = oracle_s;
+      m.row.bytes = oracle.MemoryBytes();
+      rows.push_back(Finish(std::move(m), np));
+    }
+    for (auto* group : {&voxel_rows, &exact_rows}) {
+      for (Method& m : *group) {
+        m.row.build_s = ls.total_seconds() + us.total_seconds();
+        m.row.bytes = ls.total_bytes() + us.total_bytes();
+        rows.push_back(Finish(std::move(m), np));
+      }
+    }
+    Log(options, std::to_string(voxel) + " mm: done");
+  }
+  MarkPareto(&rows);
+  return rows;
+}
+
+bool FindsTheContacts(const AccuracyRow& r) {
+  return r.contacts_defined && static_cast<double>(r.missed_half) <=
+                                   kParetoMaxMissedHalfBand * static_cast<double>(r.truth_half);
+}
+
+void MarkPareto(std::vector<AccuracyRow>* rows) {
+  // Errors closer than this are equal (rounding; the same claims scored twice).
+  constexpr double kSameErrorMm = 1e-9;
+  auto eligible = [](const AccuracyRow& r) {
+    return std::isfinite(r.p95_err_mm) && r.us.median > 0 && FindsTheContacts(r);
+  };
+  for (AccuracyRow& r : *rows) {
+    r.pareto = eligible(r);
+    if (!r.pareto) continue;
+    for (const AccuracyRow& o : *rows) {
+      if (&o == &r || !eligible(o)) continue;
+      const bool no_worse =
+          o.us.median <= r.us.median && o.p95_err_mm <= r.p95_err_mm + kSameErrorMm;
+      const bool better = o.us.median < r.us.median || o.p95_err_mm < r.p95_err_mm - kSameErrorMm;
+      if (no_worse && better) {
+        r.pareto = false;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace occlude::app
