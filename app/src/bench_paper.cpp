@@ -79,6 +79,31 @@ PowerFit FitPowerLaw(const std::vector<double>& x, const std::vector<double>& y,
   return fit;
 }
 
+AffineFit FitAffine(const std::vector<double>& x, const std::vector<double>& y,
+                    const std::string& what) {
+  AffineFit fit;
+  fit.what = what;
+  const std::size_t n = std::min(x.size(), y.size());
+  fit.points = n;
+  if (n < 2) return fit;
+  fit.x_lo = *std::min_element(x.begin(), x.begin() + static_cast<long>(n));
+  fit.x_hi = *std::max_element(x.begin(), x.begin() + static_cast<long>(n));
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    mx += x[i] / static_cast<double>(n), my += y[i] / static_cast<double>(n);
+  double sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+    syy += (y[i] - my) * (y[i] - my);
+  }
+  if (sxx <= 0) return fit;
+  fit.slope = sxy / sxx;
+  fit.intercept = my - fit.slope * mx;
+  fit.r2 = syy > 0 ? (sxy * sxy) / (sxx * syy) : 1.0;
+  return fit;
+}
+
 PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::string& mesh_name,
                      const BenchCase* pair, const PaperOptions& options) {
   PaperResult result;
@@ -151,13 +176,33 @@ PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::st
     nodes.push_back(static_cast<double>(r.nodes));
     bytes.push_back(static_cast<double>(r.bytes_grid + r.bytes_octree));
   }
+  // Local growth between the two finest voxel sizes.
+  std::vector<double> s2, voxelize2, octree2;
+  for (std::size_t i = s.size() >= 2 ? s.size() - 2 : 0; i < s.size(); ++i) {
+    s2.push_back(s[i]);
+    voxelize2.push_back(voxelize[i]);
+    octree2.push_back(octree[i]);
+  }
+  {
+    // Over every voxel size: a fixed cost per triangle plus a cost per voxel.
+    std::vector<double> all_surface, all_voxelize, all_octree;
+    for (const PaperBuildRow& r : result.builds) {
+      all_surface.push_back(static_cast<double>(r.surface));
+      all_voxelize.push_back(r.voxelize_us);
+      all_octree.push_back(r.octree_us);
+    }
+    result.affine = {FitAffine(all_surface, all_voxelize, "voxelization CPU us vs surface voxels"),
+                     FitAffine(all_surface, all_octree, "octree build CPU us vs surface voxels")};
+  }
   result.fits = {FitPowerLaw(s, surface, "surface voxels vs voxel size"),
                  FitPowerLaw(s, voxelize, "voxelization CPU time vs voxel size"),
                  FitPowerLaw(s, octree, "octree build CPU time vs voxel size"),
                  FitPowerLaw(s, nodes, "octree nodes vs voxel size"),
                  FitPowerLaw(s, bytes, "grid + octree bytes vs voxel size"),
                  FitPowerLaw(surface, voxelize, "voxelization CPU time vs surface voxels"),
-                 FitPowerLaw(surface, octree, "octree build CPU time vs surface voxels")};
+                 FitPowerLaw(surface, octree, "octree build CPU time vs surface voxels"),
+                 FitPowerLaw(s2, voxelize2, "voxelization CPU time vs voxel size, two finest"),
+                 FitPowerLaw(s2, octree2, "octree build CPU time vs voxel size, two finest")};
   {
     std::vector<double> ps(std::begin(PaperReference::kVoxel), std::end(PaperReference::kVoxel));
     std::vector<double> pc(std::begin(PaperReference::kSurfaceVoxels),
@@ -182,6 +227,7 @@ PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::st
     bench.fcl = options.fcl;
     bench.log = options.log;
     Log(options, "Fig. 10: the query-rate sweep on " + pair->name);
+    result.pair_name = pair->name;
     result.sweep = RunBench(*pair, bench);
   }
   return result;

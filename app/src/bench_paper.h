@@ -76,6 +76,16 @@ struct PowerFit {
 PowerFit FitPowerLaw(const std::vector<double>& x, const std::vector<double>& y,
                      const std::string& what);
 
+/// y = intercept + slope * x by least squares (a fixed cost plus a cost per item).
+struct AffineFit {
+  std::string what;
+  double intercept = 0, slope = 0, r2 = 0;
+  double x_lo = 0, x_hi = 0;
+  std::size_t points = 0;
+};
+AffineFit FitAffine(const std::vector<double>& x, const std::vector<double>& y,
+                    const std::string& what);
+
 struct PaperResult {
   std::string mesh_name;
   std::size_t triangles = 0;
@@ -85,6 +95,8 @@ struct PaperResult {
   std::vector<PaperLevelRow> levels;
   std::vector<BenchRow> sweep;  ///< Fig. 10; empty without a jaw pair
   std::vector<PowerFit> fits;
+  std::vector<AffineFit> affine;
+  std::string pair_name;  ///< the jaw pair of Fig. 10 (empty without one)
 };
 
 /// Figs. 4-9 on `mesh`; Fig. 10 on `pair` when not null.

@@ -60,10 +60,14 @@ std::string LevelsCsv(const PaperResult& r) {
 
 std::string FitsCsv(const PaperResult& r) {
   std::ostringstream csv;
-  csv << "what,x_lo,x_hi,points,exponent,r2\n";
+  csv << "what,kind,x_lo,x_hi,points,exponent,intercept,slope,r2\n";
   for (const PowerFit& f : r.fits) {
-    csv << '"' << f.what << '"' << ',' << Short(f.x_lo) << ',' << Short(f.x_hi) << ',' << f.points
-        << ',' << Num(f.exponent, 3) << ',' << Num(f.r2, 4) << '\n';
+    csv << '"' << f.what << "\",power," << Short(f.x_lo) << ',' << Short(f.x_hi) << ',' << f.points
+        << ',' << Num(f.exponent, 3) << ",,," << Num(f.r2, 4) << '\n';
+  }
+  for (const AffineFit& f : r.affine) {
+    csv << '"' << f.what << "\",affine," << Short(f.x_lo) << ',' << Short(f.x_hi) << ',' << f.points
+        << ",," << Num(f.intercept, 2) << ',' << Num(f.slope, 6) << ',' << Num(f.r2, 4) << '\n';
   }
   return csv.str();
 }
@@ -100,6 +104,7 @@ ChartSeries Guide(const PaperResult& r, double s0, double y0, double exponent,
   s.color = color;
   s.dashed = true;
   for (const PaperBuildRow& b : r.builds) {
+    if (b.voxel_mm > 1.0 + 1e-9) continue;  // over the fitted range only
     s.x.push_back(b.voxel_mm);
     s.y.push_back(y0 * std::pow(b.voxel_mm / s0, exponent));
   }
@@ -251,12 +256,15 @@ void SweepCharts(const PaperResult& r, const std::string& sub,
     c.log_y = true;
     c.x_categories = labels;
     c.references = {{1000.0, "1 kHz (haptic)"}};
-    int color = 0;
-    for (auto v = voxels.rbegin(); v != voxels.rend(); ++v) {
+    // One colour per sphere mode (the paper's comparison); finer voxels dashed.
+    bool finer = false;
+    for (auto v = voxels.rbegin(); v != voxels.rend(); ++v, finer = true) {
+      int color = 0;
       for (const char* variant : {"simple", "optimized", "explicit"}) {
         ChartSeries s;
         s.name = std::string("IST ") + variant + ", " + Short(*v) + " mm";
         s.color = color++;
+        s.dashed = finer;
         for (const BenchRow& b : r.sweep) {
           if (b.method != "ist" || b.variant != variant || b.query != query || b.voxel_mm != *v ||
               !(b.us.median > 0))
@@ -271,7 +279,7 @@ void SweepCharts(const PaperResult& r, const std::string& sub,
     const std::string fcl_query = query == std::string("boolean") ? "boolean" : "collide-all";
     ChartSeries f;
     f.name = "FCL OBB " + fcl_query;
-    f.color = 6;
+    f.color = 7;
     f.dashed = true;
     for (const BenchRow& b : r.sweep) {
       if (b.method != "fcl" || b.variant != "obb" || b.query != fcl_query || !(b.us.median > 0))
@@ -300,6 +308,13 @@ std::string SummaryText(const PaperResult& r, const std::string& machine) {
                   static_cast<double>(b.surface) * b.voxel_mm * b.voxel_mm / r.area_mm2);
     s << line;
   }
+  s << "\naffine fits over every voxel size (y = intercept + slope * x):\n";
+  for (const AffineFit& f : r.affine) {
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-52s %.1f us + %.4f us per voxel  r2 %.4f\n",
+                  f.what.c_str(), f.intercept, f.slope, f.r2);
+    s << line;
+  }
   s << "\npower-law fits (y ~ x^exponent, log-log least squares):\n";
   for (const PowerFit& f : r.fits) {
     char line[200];
@@ -325,7 +340,7 @@ std::vector<std::pair<std::string, std::string>> PaperFiles(const PaperResult& r
     BuildCharts(r, sub, &files);
     VolumeChart(r, sub, &files);
   }
-  SweepCharts(r, sub + " | thread CPU, median of jittered poses", &files);
+  SweepCharts(r, r.pair_name + " | " + machine + " | thread CPU, median of jittered poses", &files);
   return files;
 }
 

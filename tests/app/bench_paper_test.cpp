@@ -112,5 +112,12 @@ TEST(PowerFitTest, RecoversTheExponentOfAPowerLaw) {
   EXPECT_EQ(partial.points, 2u);
 }
 
+TEST(AffineFitTest, RecoversInterceptAndSlopeOfALine) {
+  const app::AffineFit fit = app::FitAffine({1, 2, 4, 8}, {5, 7, 11, 19}, "line");
+  EXPECT_NEAR(fit.intercept, 3.0, 1e-12);
+  EXPECT_NEAR(fit.slope, 2.0, 1e-12);
+  EXPECT_NEAR(fit.r2, 1.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace occlude::test
