@@ -107,12 +107,31 @@ double PoseTruth::DistanceAt(const Eigen::Vector3d& p_L) const {
 
 double PoseTruth::MinOver(const std::vector<std::uint32_t>& ids,
                           const std::vector<Eigen::Vector3d>& p_U, double stop_mm) {
+  // d* is 1-Lipschitz: a sample within r of a known sample c has d* >= d*(c) - r,
+  // so it cannot lower the minimum when d*(c) - r >= best. Known samples (exact
+  // values, kept for the last kKnown evaluated) prune most of a far element.
+  constexpr std::size_t kKnown = 64;
+  std::vector<std::pair<Eigen::Vector3d, double>> known;
+  std::size_t next = 0;
   double best = kInf;
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    // After the first sample, only a closer one matters: search no farther
-    // than the best so far (a sample not found within it is farther).
-    const double bound = std::isfinite(best) ? std::max(0.0, best) : kClaimSearchMm;
-    best = std::min(best, SampleDistance(ids[i], p_U[i], std::min(bound, kClaimSearchMm)));
+    bool pruned = false;
+    for (const auto& [c, d_c] : known) {
+      if (d_c - (p_U[i] - c).norm() >= best) {
+        pruned = true;
+        break;
+      }
+    }
+    if (pruned) continue;
+    const double d = SampleDistance(ids[i], p_U[i], kClaimSearchMm);
+    if (!std::isfinite(d)) continue;
+    if (known.size() < kKnown) {
+      known.emplace_back(p_U[i], d);
+    } else {
+      known[next] = {p_U[i], d};
+      next = (next + 1) % kKnown;
+    }
+    best = std::min(best, d);
     if (best <= stop_mm) break;
   }
   return best;

@@ -191,12 +191,11 @@ void BuildCharts(const PaperResult& r, const std::string& sub,
     bound.dashed = true;
     c.series.push_back(bound);
     ChartSeries paper;
-    paper.name = "paper at 1 mm";
+    paper.name = "paper, 1 mm: 14,600 / 11,120";
     paper.color = 3;
     paper.markers_only = true;
     paper.x = {1.0, 1.0};
     paper.y = {PaperReference::kNodesAt1mm, PaperReference::kSurfaceVoxels[2]};
-    paper.labels = {"14,600", "11,120"};
     c.series.push_back(paper);
     files->emplace_back("fig8-octree-nodes.png", RenderLineChartPng(c));
   }
