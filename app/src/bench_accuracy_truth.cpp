@@ -12,69 +12,88 @@ namespace occlude::app {
 
 // ---- LowerDistance ----------------------------------------------------------
 
-std::uint64_t LowerDistance::Key(const Cell& c) {
-  constexpr std::int64_t kBias = 1 << 20;  // cells within +-2^20 of the origin
-  auto u = [](int v) { return static_cast<std::uint64_t>(v + kBias) & 0x1fffffULL; };
-  return u(c.x()) | (u(c.y()) << 21) | (u(c.z()) << 42);
-}
-
 LowerDistance::Cell LowerDistance::CellOf(const Eigen::Vector3d& p, double size) const {
   const Eigen::Vector3d q = (p - origin_) / size;
   return Cell(static_cast<int>(std::floor(q.x())), static_cast<int>(std::floor(q.y())),
               static_cast<int>(std::floor(q.z())));
 }
 
+// Cells of edge `size` over the bounds, grown until at most kMaxCells (memory).
+LowerDistance::Grid LowerDistance::MakeGrid(double size) const {
+  constexpr double kMaxCells = 32e6;
+  Grid g;
+  g.size = size;
+  for (;;) {
+    const Eigen::Vector3d n = (bounds_.sizes() / g.size).array().floor() + 1.0;
+    if (n.prod() <= kMaxCells) {
+      g.dims = n.cast<int>();
+      return g;
+    }
+    g.size *= 1.01 * std::cbrt(n.prod() / kMaxCells);
+  }
+}
+
 LowerDistance::LowerDistance(std::shared_ptr<const io::TriangleMesh> lower_L, double cell_mm)
-    : mesh_(std::move(lower_L)), cell_(cell_mm) {
+    : mesh_(std::move(lower_L)) {
   if (!mesh_ || mesh_->empty()) throw std::invalid_argument("LowerDistance: empty lower mesh");
   if (!(cell_mm >= 0.0)) throw std::invalid_argument("LowerDistance: cell_mm must be >= 0");
+  const io::TriangleMesh& m = *mesh_;
   if (cell_mm == 0.0) {
     std::vector<double> edges;
-    for (std::size_t t = 0; t < mesh_->num_triangles(); ++t) {
-      const Eigen::Vector3d a = mesh_->corner(t, 0), b = mesh_->corner(t, 1),
-                            c = mesh_->corner(t, 2);
+    for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+      const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
       edges.push_back(std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()}));
     }
     std::nth_element(edges.begin(), edges.begin() + static_cast<long>(edges.size() / 2),
                      edges.end());
-    cell_ = std::clamp(edges[edges.size() / 2], 0.25, 5.0);
+    cell_mm = std::clamp(edges[edges.size() / 2], 0.25, 5.0);
   }
-  normals_ = collision::PseudoNormals(*mesh_);
-  coarse_ = 4.0 * cell_;
-  origin_ = mesh_->Bounds().min();
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
-  for (std::size_t t = 0; t < mesh_->num_triangles(); ++t) {
+  normals_ = collision::PseudoNormals(m);
+  bounds_ = m.Bounds();
+  origin_ = bounds_.min();
+  fine_ = MakeGrid(cell_mm);
+  coarse_ = MakeGrid(4.0 * fine_.size);
+  // Counting sort of (cell, triangle) over the cells each triangle's box overlaps.
+  std::vector<std::pair<Cell, Cell>> boxes(m.num_triangles());
+  cell_begin_.assign(fine_.count() + 1, 0);
+  coarse_occupied_.assign(coarse_.count(), 0);
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
     Eigen::AlignedBox3d box;
-    for (int k = 0; k < 3; ++k) box.extend(mesh_->corner(t, k));
-    const Cell lo = CellOf(box.min(), cell_), hi = CellOf(box.max(), cell_);
+    for (int k = 0; k < 3; ++k) box.extend(m.corner(t, k));
+    boxes[t] = {CellOf(box.min(), fine_.size).cwiseMax(0).cwiseMin(fine_.dims - Cell::Ones()),
+                CellOf(box.max(), fine_.size).cwiseMax(0).cwiseMin(fine_.dims - Cell::Ones())};
+    for (int z = boxes[t].first.z(); z <= boxes[t].second.z(); ++z)
+      for (int y = boxes[t].first.y(); y <= boxes[t].second.y(); ++y)
+        for (int x = boxes[t].first.x(); x <= boxes[t].second.x(); ++x)
+          ++cell_begin_[static_cast<std::size_t>(fine_.Index(Cell(x, y, z))) + 1];
+    const Cell lo = CellOf(box.min(), coarse_.size), hi = CellOf(box.max(), coarse_.size);
     for (int z = lo.z(); z <= hi.z(); ++z)
       for (int y = lo.y(); y <= hi.y(); ++y)
-        for (int x = lo.x(); x <= hi.x(); ++x)
-          entries.emplace_back(Key(Cell(x, y, z)), static_cast<std::uint32_t>(t));
-    const Cell clo = CellOf(box.min(), coarse_), chi = CellOf(box.max(), coarse_);
-    for (int z = clo.z(); z <= chi.z(); ++z)
-      for (int y = clo.y(); y <= chi.y(); ++y)
-        for (int x = clo.x(); x <= chi.x(); ++x) coarse_cells_.insert(Key(Cell(x, y, z)));
+        for (int x = lo.x(); x <= hi.x(); ++x) {
+          const long i = coarse_.Index(Cell(x, y, z));
+          if (i >= 0) coarse_occupied_[static_cast<std::size_t>(i)] = 1;
+        }
   }
-  std::sort(entries.begin(), entries.end());
-  cell_triangles_.reserve(entries.size());
-  for (std::size_t i = 0; i < entries.size();) {
-    std::size_t j = i;
-    while (j < entries.size() && entries[j].first == entries[i].first) {
-      cell_triangles_.push_back(entries[j].second);
-      ++j;
-    }
-    cells_[entries[i].first] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)};
-    i = j;
+  for (std::size_t i = 1; i < cell_begin_.size(); ++i) cell_begin_[i] += cell_begin_[i - 1];
+  cell_triangles_.resize(cell_begin_.back());
+  std::vector<std::uint32_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+    for (int z = boxes[t].first.z(); z <= boxes[t].second.z(); ++z)
+      for (int y = boxes[t].first.y(); y <= boxes[t].second.y(); ++y)
+        for (int x = boxes[t].first.x(); x <= boxes[t].second.x(); ++x)
+          cell_triangles_[fill[static_cast<std::size_t>(fine_.Index(Cell(x, y, z)))]++] =
+              static_cast<std::uint32_t>(t);
   }
-  seen_.assign(mesh_->num_triangles(), 0);
+  seen_.assign(m.num_triangles(), 0);
 }
 
 void LowerDistance::Visit(const Cell& c, const Eigen::Vector3d& p, double* best2,
                           std::uint32_t* best_t, Eigen::Vector3d* best_bary) const {
-  const auto it = cells_.find(Key(c));
-  if (it == cells_.end()) return;
-  for (std::uint32_t i = it->second.first; i < it->second.second; ++i) {
+  const long index = fine_.Index(c);
+  if (index < 0) return;
+  const auto i0 = cell_begin_[static_cast<std::size_t>(index)];
+  const auto i1 = cell_begin_[static_cast<std::size_t>(index) + 1];
+  for (std::uint32_t i = i0; i < i1; ++i) {
     const std::uint32_t t = cell_triangles_[i];
     if (seen_[t] == epoch_) continue;
     seen_[t] = epoch_;
@@ -93,11 +112,12 @@ bool LowerDistance::Signed(const Eigen::Vector3d& p_L, double max_mm, double* d)
     std::fill(seen_.begin(), seen_.end(), 0);
     epoch_ = 1;
   }
-  const Cell c = CellOf(p_L, cell_);
+  const double cell = fine_.size;
+  const Cell c = CellOf(p_L, cell);
   double best2 = std::numeric_limits<double>::infinity();
   std::uint32_t best_t = 0;
   Eigen::Vector3d bary = Eigen::Vector3d::Zero();
-  const int max_ring = static_cast<int>(std::ceil(max_mm / cell_)) + 1;
+  const int max_ring = static_cast<int>(std::ceil(max_mm / cell)) + 1;
   for (int k = 0; k <= max_ring; ++k) {
     for (int z = -k; z <= k; ++z) {
       for (int y = -k; y <= k; ++y) {
@@ -109,8 +129,8 @@ bool LowerDistance::Signed(const Eigen::Vector3d& p_L, double max_mm, double* d)
     }
     // Every point outside the box of cells visited so far is at least `clear`
     // from p, so a triangle not yet seen is at least that far.
-    const Eigen::Vector3d lo = origin_ + cell_ * (c - Cell::Constant(k)).cast<double>();
-    const Eigen::Vector3d hi = origin_ + cell_ * (c + Cell::Constant(k + 1)).cast<double>();
+    const Eigen::Vector3d lo = origin_ + cell * (c - Cell::Constant(k)).cast<double>();
+    const Eigen::Vector3d hi = origin_ + cell * (c + Cell::Constant(k + 1)).cast<double>();
     const double clear = std::min((p_L - lo).minCoeff(), (hi - p_L).minCoeff());
     if (best2 <= clear * clear) break;
     if (clear > max_mm) break;
@@ -125,12 +145,17 @@ bool LowerDistance::Signed(const Eigen::Vector3d& p_L, double max_mm, double* d)
 }
 
 bool LowerDistance::MayBeWithin(const Eigen::Vector3d& p_L, double max_mm) const {
-  const Cell lo = CellOf(p_L - Eigen::Vector3d::Constant(max_mm), coarse_);
-  const Cell hi = CellOf(p_L + Eigen::Vector3d::Constant(max_mm), coarse_);
+  if (bounds_.exteriorDistance(p_L) > max_mm) return false;
+  const Cell lo = CellOf(p_L - Eigen::Vector3d::Constant(max_mm), coarse_.size)
+                      .cwiseMax(0)
+                      .cwiseMin(coarse_.dims - Cell::Ones());
+  const Cell hi = CellOf(p_L + Eigen::Vector3d::Constant(max_mm), coarse_.size)
+                      .cwiseMax(0)
+                      .cwiseMin(coarse_.dims - Cell::Ones());
   for (int z = lo.z(); z <= hi.z(); ++z)
     for (int y = lo.y(); y <= hi.y(); ++y)
       for (int x = lo.x(); x <= hi.x(); ++x)
-        if (coarse_cells_.count(Key(Cell(x, y, z)))) return true;
+        if (coarse_occupied_[static_cast<std::size_t>(coarse_.Index(Cell(x, y, z)))]) return true;
   return false;
 }
 

@@ -20,8 +20,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "occlude/collision/signed_distance.h"
@@ -50,19 +48,34 @@ class LowerDistance {
 
  private:
   using Cell = Eigen::Vector3i;
-  static std::uint64_t Key(const Cell& c);
+  /// A dense grid over the mesh's bounding box (cells outside it are empty).
+  struct Grid {
+    double size = 1.0;
+    Eigen::Vector3i dims = Eigen::Vector3i::Ones();
+    /// Linear index of cell c, or -1 outside the grid.
+    long Index(const Cell& c) const {
+      if ((c.array() < 0).any() || (c.array() >= dims.array()).any()) return -1;
+      return c.x() + static_cast<long>(dims.x()) * (c.y() + static_cast<long>(dims.y()) * c.z());
+    }
+    std::size_t count() const {
+      return static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+             static_cast<std::size_t>(dims.z());
+    }
+  };
   Cell CellOf(const Eigen::Vector3d& p, double size) const;
+  Grid MakeGrid(double size) const;
   void Visit(const Cell& c, const Eigen::Vector3d& p, double* best2, std::uint32_t* best_t,
              Eigen::Vector3d* best_bary) const;
 
   std::shared_ptr<const io::TriangleMesh> mesh_;
   collision::PseudoNormals normals_;
-  double cell_ = 0.5, coarse_ = 2.0;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> cells_;  // [b, e)
+  Eigen::AlignedBox3d bounds_;
+  Grid fine_, coarse_;
+  std::vector<std::uint32_t> cell_begin_;  // CSR over fine_ cells: size count() + 1
   std::vector<std::uint32_t> cell_triangles_;
-  std::unordered_set<std::uint64_t> coarse_cells_;
-  mutable std::vector<std::uint32_t> seen_;  // seen_[t] == epoch_: tested in this call
+  std::vector<std::uint8_t> coarse_occupied_;  // per coarse_ cell
+  mutable std::vector<std::uint32_t> seen_;    // seen_[t] == epoch_: tested in this call
   mutable std::uint32_t epoch_ = 0;
 };
 

@@ -48,6 +48,9 @@ struct PaperBuildRow {
   int build_reps = 0;
   double surface_s = 0, proximity_s = 0, interior_s = 0;  ///< voxelization stages (wall)
   double explicit_s = 0;                                  ///< explicit spheres and slabs (wall)
+  /// The whole SphereTree::Build (voxels, octree, explicit spheres and slabs,
+  /// distance bound), thread CPU, one build.
+  double tree_us = 0;
   std::size_t nodes = 0, leaves = 0;
   int levels = 0;
   std::size_t paper_min_nodes = 0;  ///< the paper's estimate: leaves + ceil(./8) per level
