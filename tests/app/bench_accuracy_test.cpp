@@ -3,8 +3,8 @@
 // query / level, PNG charts, the planner's JSON table, and numbers that must
 // hold by construction: the exact oracle level has zero error against the
 // ground truth, coarser voxels have larger voxel-level errors, the voxel-pair
-// query misses nothing (it is conservative) and the exact pair query neither
-// misses nor invents contacts, and the three sphere modes answer alike.
+// query misses no contact near the surface (it is conservative) and the exact
+// pair query invents none, and the three sphere modes answer alike.
 #include "bench_accuracy.h"
 
 #include <gtest/gtest.h>
@@ -123,11 +123,13 @@ TEST_F(AccuracyCommandTest, AccuracyNumbersAreSane) {
     EXPECT_LT(Value(at(o + "subvoxel"), "p95_err_mm"), Value(at(o + "voxel"), "p95_err_mm")) << v;
     for (const char* variant : {"simple", "optimized", "explicit"}) {
       const std::string p = std::string("ist,") + variant + "," + v + ",pairs,";
-      // Voxel pairs are conservative: every truth contact's voxel is paired.
-      EXPECT_EQ(at(p + "voxel").at("missed"), "0") << p;
-      // Exact pairs: a contact's triangle is always found, and each claimed
-      // closest point is at most its claimed (unsigned) distance away.
-      EXPECT_EQ(at(p + "exact").at("missed"), "0") << p;
+      // Voxel pairs are conservative: a truth contact within delta of the
+      // lower surface (|d*| <= delta / 2 here) has its voxel paired; exact
+      // pairs then find its triangle, and each claimed closest point is at most
+      // its claimed (unsigned) distance away. (Deeper interpenetration is
+      // invisible to both: they see surfaces within delta, not the inside.)
+      EXPECT_EQ(at(p + "voxel").at("missed_half_band"), "0") << p;
+      EXPECT_EQ(at(p + "exact").at("missed_half_band"), "0") << p;
       EXPECT_EQ(at(p + "exact").at("false_contacts"), "0") << p;
       // The sphere modes change the work, never the answer.
       for (const char* column : {"p95_err_mm", "max_err_mm", "missed", "false_contacts"}) {
