@@ -9,6 +9,7 @@
 #include <ostream>
 #include <random>
 
+#include "bench_accuracy_answers.h"
 #include "bench_accuracy_score.h"
 #include "bench_accuracy_truth.h"
 #include "bench_poses.h"
@@ -65,20 +66,6 @@ Method NewMethod(const std::string& method, const std::string& variant, const st
   return m;
 }
 
-void Merge(const Score& from, Score* to) {
-  to->errors.insert(to->errors.end(), from.errors.begin(), from.errors.end());
-  to->pen_errors.insert(to->pen_errors.end(), from.pen_errors.begin(), from.pen_errors.end());
-  to->claims += from.claims;
-  to->unscored += from.unscored;
-  to->truth_contacts += from.truth_contacts;
-  to->truth_half += from.truth_half;
-  to->missed += from.missed;
-  to->missed_half += from.missed_half;
-  to->false_contacts += from.false_contacts;
-  to->false_double += from.false_double;
-  to->contacts_defined = to->contacts_defined && from.contacts_defined;
-}
-
 AccuracyRow Finish(Method m, int poses) {
   AccuracyRow& r = m.row;
   r.poses = poses;
@@ -101,82 +88,6 @@ AccuracyRow Finish(Method m, int poses) {
   r.false_contacts = m.score.false_contacts;
   r.false_double = m.score.false_double;
   return r;
-}
-
-// ---- Answers: each query's result as claims -------------------------------
-
-Answer OracleAnswer(const collision::JawOracle& oracle, const collision::OracleResult& result,
-                    const Eigen::Isometry3d& X_LU, double spacing_mm) {
-  Answer a;
-  const bool voxel = result.level == AccuracyLevel::kVoxel;
-  a.cover = voxel ? Cover::kVoxel : Cover::kRadius;
-  a.radius_mm = spacing_mm;
-  a.grid = &oracle.upper_tree().grid();
-  a.has_depth = true;
-  a.max_penetration_mm = result.max_penetration_mm;
-  const Eigen::Isometry3d X_UL = X_LU.inverse();
-  for (const auto* list : {&result.contacts, &result.penetrations}) {
-    for (const collision::SurfacePoint& p : *list) {
-      Claim c;
-      c.p_L = p.p_L;
-      c.d_mm = p.distance_mm;
-      if (voxel) c.element = SurfaceVoxelOf(*a.grid, X_UL * p.p_L);
-      a.claims.push_back(c);
-    }
-  }
-  return a;
-}
-
-// Upper voxels of the voxel pairs, each claimed within delta.
-Answer PairsVoxelAnswer(const collision::SphereTree& upper, const collision::CollisionResult& r,
-                        double delta_mm) {
-  Answer a;
-  a.region = true;
-  a.cover = Cover::kVoxel;
-  a.grid = &upper.grid();
-  std::vector<std::uint32_t> voxels;
-  for (const collision::VoxelPair& p : r.pairs) voxels.push_back(p.voxel_b);
-  std::sort(voxels.begin(), voxels.end());
-  voxels.erase(std::unique(voxels.begin(), voxels.end()), voxels.end());
-  for (const std::uint32_t v : voxels) {
-    Claim c;
-    c.d_mm = delta_mm;
-    c.element = v;
-    a.claims.push_back(c);
-  }
-  return a;
-}
-
-// Per upper triangle of the exact pairs, its closest approach (point, distance).
-Answer PairsExactAnswer(const collision::CollisionResult& r) {
-  Answer a;
-  a.cover = Cover::kTriangle;
-  std::map<std::uint32_t, const collision::TriangleContact*> closest;
-  for (const collision::TriangleContact& c : r.contacts) {
-    auto [it, inserted] = closest.emplace(c.triangle_b, &c);
-    if (!inserted && c.distance_mm < it->second->distance_mm) it->second = &c;
-  }
-  for (const auto& [t, c] : closest) {
-    Claim claim;
-    claim.p_L = c->p_A_on_b;
-    claim.d_mm = c->distance_mm;
-    claim.element = t;
-    a.claims.push_back(claim);
-  }
-  return a;
-}
-
-std::vector<collision::VoxelPair> SortedPairs(const collision::CollisionResult& r) {
-  std::vector<collision::VoxelPair> pairs = r.pairs;
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
-}
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>> ContactKeys(
-    const collision::CollisionResult& r) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> keys;
-  for (const auto& c : r.contacts) keys.emplace_back(c.triangle_a, c.triangle_b);
-  return keys;  // already sorted by (a, b)
 }
 
 }  // namespace
@@ -224,23 +135,12 @@ std::vector<AccuracyRow> RunAccuracy(const BenchCase& bc, const AccuracyOptions&
       for (int k = 0; k < np; ++k) {
         const Eigen::Isometry3d& X = poses[static_cast<std::size_t>(k)];
         TimeInto(&all.us, options.reps, [&] { (void)peer.CollideAll(X); });
-        Answer a;
-        a.region = true;
-        a.cover = Cover::kTriangle;
-        std::vector<std::size_t> tris;
-        for (const auto& [lo, up] : peer.IntersectingPairs(X)) tris.push_back(up);
-        std::sort(tris.begin(), tris.end());
-        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-        for (const std::size_t t : tris)
-          a.claims.push_back({Eigen::Vector3d::Zero(), 0.0, static_cast<std::int64_t>(t)});
-        ScoreAnswer(a, &truths[static_cast<std::size_t>(k)], &all.score);
+        ScoreAnswer(FclPairsAnswer(peer.IntersectingPairs(X)), &truths[static_cast<std::size_t>(k)],
+                    &all.score);
         if (bv == FclBv::kOBBRSS) {
           FclQueryResult r;
           TimeInto(&dist.us, options.reps, [&] { r = peer.Distance(X); });
-          Answer d;
-          d.cover = Cover::kNone;
-          d.claims.push_back({r.p_L_on_upper, r.distance_mm, -1});
-          ScoreAnswer(d, &truths[static_cast<std::size_t>(k)], &dist.score);
+          ScoreAnswer(FclDistanceAnswer(r), &truths[static_cast<std::size_t>(k)], &dist.score);
         }
       }
       all.row.build_s = dist.row.build_s = peer.build_seconds();
@@ -307,7 +207,7 @@ std::vector<AccuracyRow> RunAccuracy(const BenchCase& bc, const AccuracyOptions&
           const bool same = exact ? ContactKeys(results[m]) == ContactKeys(results[2])
                                   : SortedPairs(results[m]) == SortedPairs(results[2]);
           if (same) {
-            Merge(first, &group[m].score);
+            MergeScore(first, &group[m].score);
           } else {
             Log(options, std::string("warning: ") + collision::ToString(kModes[m]) +
                              " spheres answered differently from explicit; scored separately");

@@ -183,6 +183,20 @@ std::vector<double> PoseTruth::VoxelMins(const collision::VoxelGrid& grid_U,
   return mins;
 }
 
+void MergeScore(const Score& from, Score* to) {
+  to->errors.insert(to->errors.end(), from.errors.begin(), from.errors.end());
+  to->pen_errors.insert(to->pen_errors.end(), from.pen_errors.begin(), from.pen_errors.end());
+  to->claims += from.claims;
+  to->unscored += from.unscored;
+  to->truth_contacts += from.truth_contacts;
+  to->truth_half += from.truth_half;
+  to->missed += from.missed;
+  to->missed_half += from.missed_half;
+  to->false_contacts += from.false_contacts;
+  to->false_double += from.false_double;
+  to->contacts_defined = to->contacts_defined && from.contacts_defined;
+}
+
 void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score) {
   const double delta = truth->delta_mm();
   const Eigen::Isometry3d X_UL = truth->X_LU().inverse();

@@ -130,6 +130,9 @@ struct Score {
 /// Index of the surface voxel of grid_U holding p_U (frame U), or -1.
 std::int64_t SurfaceVoxelOf(const collision::VoxelGrid& grid_U, const Eigen::Vector3d& p_U);
 
+/// Adds `from` to `to` (the same answer scored once for several methods).
+void MergeScore(const Score& from, Score* to);
+
 /// Scores `answer` at the pose and adds it to `score`.
 void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score);
 
