@@ -183,18 +183,23 @@ void AddBenchCommand(CLI::App& app) {
                                     "Use the generated jaw pair with this many triangles per jaw");
   case_opt->excludes(synth_opt);
   synth_opt->excludes(case_opt);
-  auto* voxel_opt = cmd->add_option("--voxel", args->voxels, "Voxel sizes, mm (comma separated)")
-                        ->delimiter(',')
-                        ->capture_default_str()
-                        ->check(PositiveMm());
-  cmd->add_option("--offsets", args->offsets, "Offsets along the axis, mm (default 5 ... -0.2)")
+  auto* voxel_opt =
+      cmd->add_option("--voxel", args->voxels,
+                      "Voxel sizes, mm (comma separated; --paper: 10,5,1,0.8,0.4,0.2,0.1)")
+          ->delimiter(',')
+          ->capture_default_str()
+          ->check(PositiveMm());
+  cmd->add_option("--offsets", args->offsets,
+                  "Offsets along the axis, mm (default 5 ... -0.2; --paper: 40 ... -0.2)")
       ->delimiter(',');
-  cmd->add_option("--reps", args->reps, "Jittered poses per offset")
+  cmd->add_option("--reps", args->reps,
+                  "Jittered poses per offset (--paper: 9; --accuracy: timed queries per pose, 3)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--seed", args->seed, "Seed of the jitter, the trajectory and the synthetic pair")
       ->capture_default_str();
-  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")
+  cmd->add_option("--delta", args->delta_mm,
+                  "Contact band, mm (--paper: 0, the paper's overlap test)")
       ->capture_default_str()
       ->check(BandMm());
   cmd->add_option("--axis", args->axis, "Occlusal axis: auto, x, y, z, -x, -y, -z")
