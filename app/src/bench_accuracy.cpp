@@ -109,132 +109,156 @@ std::vector<Eigen::Isometry3d> AccuracyPoses(const BenchCase& bc, const Accuracy
   return poses;
 }
 
+namespace {
+
+// What every measurement shares: the case, the poses and the truth at each.
+struct Study {
+  const BenchCase& bc;
+  const AccuracyOptions& options;
+  const std::vector<Eigen::Isometry3d>& poses;
+  std::vector<PoseTruth>& truths;
+  int np() const { return static_cast<int>(poses.size()); }
+};
+
+// FCL all-contacts (OBB, OBBRSS) and distance (OBBRSS).
+void MeasureFcl(const Study& st, std::vector<AccuracyRow>* rows) {
+  for (const FclBv bv : {FclBv::kOBB, FclBv::kOBBRSS}) {
+    const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
+    const FclPeer peer(*st.bc.lower_L, *st.bc.upper_U, bv);
+    Method all = NewMethod("fcl", variant, "collide-all", "exact", std::nan(""));
+    Method dist = NewMethod("fcl", variant, "distance", "exact", std::nan(""));
+    for (std::size_t k = 0; k < st.poses.size(); ++k) {
+      const Eigen::Isometry3d& X = st.poses[k];
+      TimeInto(&all.us, st.options.reps, [&] { (void)peer.CollideAll(X); });
+      ScoreAnswer(FclPairsAnswer(peer.IntersectingPairs(X)), &st.truths[k], &all.score);
+      if (bv != FclBv::kOBBRSS) continue;
+      FclQueryResult r;
+      TimeInto(&dist.us, st.options.reps, [&] { r = peer.Distance(X); });
+      ScoreAnswer(FclDistanceAnswer(r), &st.truths[k], &dist.score);
+    }
+    all.row.build_s = dist.row.build_s = peer.build_seconds();
+    all.row.bytes = dist.row.bytes = peer.approx_bytes();
+    rows->push_back(Finish(std::move(all), st.np()));
+    if (bv == FclBv::kOBBRSS) rows->push_back(Finish(std::move(dist), st.np()));
+    Log(st.options, "FCL " + variant + " done");
+  }
+}
+
+constexpr std::pair<AccuracyLevel, const char*> kLevels[] = {{AccuracyLevel::kVoxel, "voxel"},
+                                                             {AccuracyLevel::kSubVoxel, "subvoxel"},
+                                                             {AccuracyLevel::kExact, "exact"}};
+
+// The oracle at its three levels at pose k: timed without point lists, then
+// queried once more with them for the claims.
+void MeasureOracle(const Study& st, const collision::JawOracle& oracle, double spacing_mm,
+                   std::size_t k, std::vector<Method>* rows) {
+  const Eigen::Isometry3d& X = st.poses[k];
+  for (std::size_t l = 0; l < 3; ++l) {
+    collision::OracleRequest req;
+    req.level = kLevels[l].first;
+    req.contact_band_mm = st.options.delta_mm;
+    req.keep_points = false;
+    collision::OracleResult result;
+    TimeInto(&(*rows)[l].us, st.options.reps, [&] { oracle.Query(X, req, &result); });
+    req.keep_points = true;
+    oracle.Query(X, req, &result);
+    ScoreAnswer(OracleAnswer(oracle, result, X, spacing_mm), &st.truths[k], &(*rows)[l].score);
+  }
+}
+
+// The pair query (voxel level or with exact triangles) with each sphere mode
+// at pose k. The modes report the same pairs (collide.h): each is timed, and
+// scored once unless its answer differs.
+void MeasurePairs(const Study& st, const collision::SphereTree& lower,
+                  const collision::SphereTree& upper, bool exact, std::size_t k,
+                  std::vector<Method>* group) {
+  collision::CollisionRequest req;
+  req.delta_mm = st.options.delta_mm;
+  req.exact = exact;
+  collision::CollisionResult results[3];
+  for (std::size_t m = 0; m < 3; ++m) {
+    req.spheres = kModes[m];
+    TimeInto(&(*group)[m].us, st.options.reps,
+             [&] { collision::Collide(lower, upper, st.poses[k], req, &results[m]); });
+  }
+  auto answer = [&](const collision::CollisionResult& r) {
+    return exact ? PairsExactAnswer(r) : PairsVoxelAnswer(upper, r, st.options.delta_mm);
+  };
+  Score first;
+  ScoreAnswer(answer(results[2]), &st.truths[k], &first);
+  for (std::size_t m = 0; m < 3; ++m) {
+    const bool same = exact ? ContactKeys(results[m]) == ContactKeys(results[2])
+                            : SortedPairs(results[m]) == SortedPairs(results[2]);
+    if (same) {
+      MergeScore(first, &(*group)[m].score);
+      continue;
+    }
+    Log(st.options, std::string("warning: ") + collision::ToString(kModes[m]) +
+                        " spheres answered differently from explicit; scored separately");
+    ScoreAnswer(answer(results[m]), &st.truths[k], &(*group)[m].score);
+  }
+}
+
+// Every IST method at one voxel size (one oracle build serves them all).
+void MeasureVoxelSize(const Study& st, double voxel, std::vector<AccuracyRow>* rows) {
+  const double t0 = NowSeconds();
+  const collision::OracleOptions oracle_options = OracleOptionsFor(voxel);
+  const collision::JawOracle oracle(st.bc.lower_L, st.bc.upper_U, oracle_options);
+  const double oracle_s = NowSeconds() - t0;
+  Log(st.options,
+      std::to_string(voxel) + " mm: oracle built in " + std::to_string(oracle_s) + " s; querying");
+  std::vector<Method> oracle_rows, voxel_rows, exact_rows;
+  for (const auto& [level, name] : kLevels) {
+    oracle_rows.push_back(NewMethod("ist", "explicit", "oracle", name, voxel));
+  }
+  for (const SphereMode mode : kModes) {
+    voxel_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "voxel", voxel));
+    exact_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "exact", voxel));
+  }
+  for (std::size_t k = 0; k < st.poses.size(); ++k) {
+    MeasureOracle(st, oracle, oracle_options.sample_spacing_mm, k, &oracle_rows);
+    MeasurePairs(st, oracle.lower_tree(), oracle.upper_tree(), false, k, &voxel_rows);
+    MeasurePairs(st, oracle.lower_tree(), oracle.upper_tree(), true, k, &exact_rows);
+    st.truths[k].ClearCache();
+  }
+  for (Method& m : oracle_rows) {
+    m.row.build_s = oracle_s;
+    m.row.bytes = oracle.MemoryBytes();
+    rows->push_back(Finish(std::move(m), st.np()));
+  }
+  const auto& ls = oracle.lower_tree().stats();
+  const auto& us = oracle.upper_tree().stats();
+  for (auto* group : {&voxel_rows, &exact_rows}) {
+    for (Method& m : *group) {
+      m.row.build_s = ls.total_seconds() + us.total_seconds();
+      m.row.bytes = ls.total_bytes() + us.total_bytes();
+      rows->push_back(Finish(std::move(m), st.np()));
+    }
+  }
+  Log(st.options, std::to_string(voxel) + " mm: done");
+}
+
+}  // namespace
+
 std::vector<AccuracyRow> RunAccuracy(const BenchCase& bc, const AccuracyOptions& options) {
   const std::vector<Eigen::Isometry3d> poses = AccuracyPoses(bc, options);
-  const int np = static_cast<int>(poses.size());
   Log(options, "ground truth: lower distance grid and upper samples at " +
                    std::to_string(options.truth_spacing_mm) + " mm");
   const LowerDistance lower(bc.lower_L);
   const UpperSamples samples(bc.upper_U, options.truth_spacing_mm);
   std::vector<PoseTruth> truths;
+  truths.reserve(poses.size());
   std::size_t contacts = 0;
   for (const auto& X : poses) {
     truths.emplace_back(lower, samples, X, options.delta_mm);
     contacts += truths.back().contact_ids().size();
   }
   Log(options, std::to_string(samples.size()) + " upper samples; " + std::to_string(contacts) +
-                   " truth contacts over " + std::to_string(np) + " poses");
+                   " truth contacts over " + std::to_string(poses.size()) + " poses");
+  const Study study{bc, options, poses, truths};
   std::vector<AccuracyRow> rows;
-
-  if (options.fcl && FclPeer::Available()) {
-    for (const FclBv bv : {FclBv::kOBB, FclBv::kOBBRSS}) {
-      const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
-      const FclPeer peer(*bc.lower_L, *bc.upper_U, bv);
-      Method all = NewMethod("fcl", variant, "collide-all", "exact", std::nan(""));
-      Method dist = NewMethod("fcl", variant, "distance", "exact", std::nan(""));
-      for (int k = 0; k < np; ++k) {
-        const Eigen::Isometry3d& X = poses[static_cast<std::size_t>(k)];
-        TimeInto(&all.us, options.reps, [&] { (void)peer.CollideAll(X); });
-        ScoreAnswer(FclPairsAnswer(peer.IntersectingPairs(X)), &truths[static_cast<std::size_t>(k)],
-                    &all.score);
-        if (bv == FclBv::kOBBRSS) {
-          FclQueryResult r;
-          TimeInto(&dist.us, options.reps, [&] { r = peer.Distance(X); });
-          ScoreAnswer(FclDistanceAnswer(r), &truths[static_cast<std::size_t>(k)], &dist.score);
-        }
-      }
-      all.row.build_s = dist.row.build_s = peer.build_seconds();
-      all.row.bytes = dist.row.bytes = peer.approx_bytes();
-      rows.push_back(Finish(std::move(all), np));
-      if (bv == FclBv::kOBBRSS) rows.push_back(Finish(std::move(dist), np));
-      Log(options, "FCL " + variant + " done");
-    }
-  }
-
-  for (const double voxel : options.voxels_mm) {
-    const double t0 = NowSeconds();
-    const collision::OracleOptions oracle_options = OracleOptionsFor(voxel);
-    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, oracle_options);
-    const double oracle_s = NowSeconds() - t0;
-    const collision::SphereTree& lower_tree = oracle.lower_tree();
-    const collision::SphereTree& upper_tree = oracle.upper_tree();
-    Log(options, std::to_string(voxel) + " mm: oracle built in " + std::to_string(oracle_s) +
-                     " s; querying");
-    const std::pair<AccuracyLevel, const char*> levels[] = {{AccuracyLevel::kVoxel, "voxel"},
-                                                            {AccuracyLevel::kSubVoxel, "subvoxel"},
-                                                            {AccuracyLevel::kExact, "exact"}};
-    std::vector<Method> oracle_rows, voxel_rows, exact_rows;
-    for (const auto& [level, name] : levels) {
-      oracle_rows.push_back(NewMethod("ist", "explicit", "oracle", name, voxel));
-    }
-    for (const SphereMode mode : kModes) {
-      voxel_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "voxel", voxel));
-      exact_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "exact", voxel));
-    }
-    for (int k = 0; k < np; ++k) {
-      const Eigen::Isometry3d& X = poses[static_cast<std::size_t>(k)];
-      PoseTruth& truth = truths[static_cast<std::size_t>(k)];
-      for (std::size_t l = 0; l < 3; ++l) {
-        collision::OracleRequest req;
-        req.level = levels[l].first;
-        req.contact_band_mm = options.delta_mm;
-        req.keep_points = false;
-        collision::OracleResult result;
-        TimeInto(&oracle_rows[l].us, options.reps, [&] { oracle.Query(X, req, &result); });
-        req.keep_points = true;
-        oracle.Query(X, req, &result);
-        ScoreAnswer(OracleAnswer(oracle, result, X, oracle_options.sample_spacing_mm), &truth,
-                    &oracle_rows[l].score);
-      }
-      // The three sphere modes report the same pairs (collide.h); each is
-      // timed, and scored once unless its answer differs.
-      for (const bool exact : {false, true}) {
-        std::vector<Method>& group = exact ? exact_rows : voxel_rows;
-        collision::CollisionRequest req;
-        req.delta_mm = options.delta_mm;
-        req.exact = exact;
-        collision::CollisionResult results[3];
-        for (std::size_t m = 0; m < 3; ++m) {
-          req.spheres = kModes[m];
-          TimeInto(&group[m].us, options.reps,
-                   [&] { collision::Collide(lower_tree, upper_tree, X, req, &results[m]); });
-        }
-        Score first;
-        const Answer answer = exact ? PairsExactAnswer(results[2])
-                                    : PairsVoxelAnswer(upper_tree, results[2], options.delta_mm);
-        ScoreAnswer(answer, &truth, &first);
-        for (std::size_t m = 0; m < 3; ++m) {
-          const bool same = exact ? ContactKeys(results[m]) == ContactKeys(results[2])
-                                  : SortedPairs(results[m]) == SortedPairs(results[2]);
-          if (same) {
-            MergeScore(first, &group[m].score);
-          } else {
-            Log(options, std::string("warning: ") + collision::ToString(kModes[m]) +
-                             " spheres answered differently from explicit; scored separately");
-            ScoreAnswer(exact ? PairsExactAnswer(results[m])
-                              : PairsVoxelAnswer(upper_tree, results[m], options.delta_mm),
-                        &truth, &group[m].score);
-          }
-        }
-      }
-      truth.ClearCache();
-    }
-    const auto& ls = lower_tree.stats();
-    const auto& us = upper_tree.stats();
-    for (Method& m : oracle_rows) {
-      m.row.build_s = oracle_s;
-      m.row.bytes = oracle.MemoryBytes();
-      rows.push_back(Finish(std::move(m), np));
-    }
-    for (auto* group : {&voxel_rows, &exact_rows}) {
-      for (Method& m : *group) {
-        m.row.build_s = ls.total_seconds() + us.total_seconds();
-        m.row.bytes = ls.total_bytes() + us.total_bytes();
-        rows.push_back(Finish(std::move(m), np));
-      }
-    }
-    Log(options, std::to_string(voxel) + " mm: done");
-  }
+  if (options.fcl && FclPeer::Available()) MeasureFcl(study, &rows);
+  for (const double voxel : options.voxels_mm) MeasureVoxelSize(study, voxel, &rows);
   MarkPareto(&rows);
   return rows;
 }
