@@ -219,7 +219,7 @@ PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::st
     result.fits.push_back(FitPowerLaw(s, dense, "paper: dense grid cells n^3 vs voxel size"));
   }
 
-  if (pair != nullptr) {
+  if (pair != nullptr && options.sweep) {
     BenchOptions bench;
     bench.voxels_mm = options.sweep_voxels_mm;
     bench.offsets_mm = options.offsets_mm;

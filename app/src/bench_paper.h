@@ -34,6 +34,7 @@ struct PaperOptions {
   std::uint32_t seed = 1;
   double delta_mm = 0.0;  ///< Fig. 10 pairs band: 0 = the paper's overlap test
   bool fcl = true;
+  bool sweep = true;  ///< run Fig. 10 when a pair is given
   std::ostream* log = nullptr;
 };
 

@@ -35,6 +35,7 @@ struct BenchArgs {
   bool paper = false, accuracy = false;
   std::string mesh;
   std::vector<double> sweep_voxels = {0.8, 0.2};
+  bool no_sweep = false;
   int poses = 16;
   std::vector<double> offset_range = {-0.2, 1.0};
   double truth_spacing = 0.05;
@@ -53,6 +54,7 @@ void RunPaperCommand(const BenchArgs& args, const Given& given) {
   if (given.offsets) options.offsets_mm = args.offsets;
   if (given.delta) options.delta_mm = args.delta_mm;
   options.sweep_voxels_mm = args.sweep_voxels;
+  options.sweep = !args.no_sweep;
   options.seed = args.seed;
   options.fcl = !args.no_fcl;
   options.log = &std::cerr;
@@ -232,6 +234,7 @@ void AddBenchCommand(CLI::App& app) {
   auto* mesh_opt =
       cmd->add_option("--mesh", args->mesh, "--paper on one mesh file (no query-rate figure)");
   mesh_opt->excludes(case_opt)->excludes(synth_opt);
+  cmd->add_flag("--no-sweep", args->no_sweep, "--paper: skip Fig. 10 (the query-rate sweep)");
   cmd->add_option("--sweep-voxel", args->sweep_voxels, "--paper: voxel sizes of Fig. 10, mm")
       ->delimiter(',')
       ->capture_default_str()

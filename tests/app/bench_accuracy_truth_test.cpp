@@ -11,6 +11,8 @@
 #include <random>
 #include <set>
 
+#include "bench_accuracy_score.h"
+#include "bench_files.h"
 #include "occlude/collision/signed_distance.h"
 #include "test_common.h"
 
@@ -113,6 +115,37 @@ TEST(AccuracyTruthTest, SamplesLieOnTheirTrianglesCoverThemAndHoldEveryVertexOnc
   }
   EXPECT_EQ(vertices_seen.size(), sphere.num_vertices());
   EXPECT_EQ(total, samples.size());
+}
+
+// Analytic truth: the sphere pushed 0.15 mm into the box's top face (z = 0).
+// Near the pole every sample's signed distance to the box is its height z, the
+// deepest sample is the pole vertex (depth 0.15 mm), and the truth contacts are
+// exactly the samples below the band.
+TEST(AccuracyTruthTest, SphereIntoABoxHasTheAnalyticDepthAndDistances) {
+  const auto lower = std::make_shared<io::TriangleMesh>(SphereOnBoxLower());
+  const auto upper = std::make_shared<io::TriangleMesh>(SphereOnBoxUpper());
+  const app::LowerDistance truth(lower);
+  const app::UpperSamples samples(upper, 0.1);
+  const double depth = 0.15, delta = 0.1;
+  Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
+  X_LU.translation().z() = -depth;
+  app::PoseTruth pose(truth, samples, X_LU, delta);
+  EXPECT_NEAR(pose.max_penetration_mm(), depth, kExactMm);
+  ASSERT_GT(pose.contact_ids().size(), 10u);
+  // contact_d is stored as float: 1e-6 mm covers its rounding at these sizes.
+  constexpr double kFloatMm = 1e-6;
+  for (std::size_t i = 0; i < pose.contact_ids().size(); ++i) {
+    const Eigen::Vector3d p_L = X_LU * pose.contact_p_U()[i];
+    EXPECT_NEAR(pose.contact_d()[i], p_L.z(), kFloatMm);
+    EXPECT_LE(p_L.z(), delta + kFloatMm);
+  }
+  std::size_t expected = 0;
+  std::vector<Eigen::Vector3d> p;
+  for (std::size_t t = 0; t < samples.num_triangles(); ++t) {
+    samples.Generate(t, &p);
+    for (const Eigen::Vector3d& q : p) expected += (X_LU * q).z() <= delta;
+  }
+  EXPECT_EQ(pose.contact_ids().size(), expected);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// Reading what the `occlude bench` modes write, for the tests of --paper and
-// --accuracy: text files, CSV rows as column -> cell maps ('#' lines are
-// comments), and the size of a PNG.
+// Helpers for the tests of `occlude bench --paper` and `--accuracy`: a tiny
+// analytic case folder (a sphere resting on a box), and reading what the modes
+// write: text files, CSV rows as column -> cell maps ('#' lines are comments),
+// and the size of a PNG.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -13,7 +14,28 @@
 #include <utility>
 #include <vector>
 
+#include "occlude/io/mesh_io.h"
+#include "test_common.h"
+
 namespace occlude::test {
+
+/// The sphere-on-box case: lower.stl a box [-6, 6] x [-6, 6] x [-2, 0] (top face
+/// z = 0), upper.stl a sphere of radius 3 about (0, 0, 3) whose south pole, a
+/// vertex, touches the top face at the origin. Both in one frame (the "bite"
+/// is the identity); the occlusal axis is +z. Small: a sanitizer build
+/// handles its oracles in seconds.
+inline constexpr double kSphereRadiusMm = 3.0;
+inline io::TriangleMesh SphereOnBoxUpper() {
+  return MakeSphere(Eigen::Vector3d(0, 0, kSphereRadiusMm), kSphereRadiusMm, 18, 24);
+}
+inline io::TriangleMesh SphereOnBoxLower() {
+  return MakeBox(Eigen::Vector3d(-6, -6, -2), Eigen::Vector3d(6, 6, 0));
+}
+inline void WriteSphereOnBoxCase(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  io::WriteBinaryStl(SphereOnBoxLower(), dir / "lower.stl");
+  io::WriteBinaryStl(SphereOnBoxUpper(), dir / "upper.stl");
+}
 
 inline std::string ReadFileText(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
