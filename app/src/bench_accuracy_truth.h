@@ -3,8 +3,9 @@
 // fixed set of upper surface samples on which every method is scored.
 //
 // Exact signed distance (LowerDistance): the closest point over ALL lower
-// triangles, found through a uniform hash grid of the triangles' bounding boxes
-// searched in growing shells of cells until no unvisited triangle can be closer,
+// triangles, found through a uniform grid (a dense array over the lower's
+// bounds) of the triangles' bounding boxes, searched in growing shells of cells
+// until no unvisited triangle can be closer,
 // and signed by the angle-weighted pseudo-normal at that point
 // (collision::PseudoNormals, the sign convention of the oracle, defined for open
 // scans). It shares no search code with the oracle's distance field, so the
@@ -31,7 +32,7 @@ namespace occlude::app {
 /// thread-safe (the search keeps per-call marks); one instance per thread.
 class LowerDistance {
  public:
-  /// cell_mm: edge of the hash-grid cells; 0 = the median longest triangle edge
+  /// cell_mm: edge of the grid cells; 0 = the median longest triangle edge
   /// (clamped to [0.25, 5] mm), about the triangle size being best.
   explicit LowerDistance(std::shared_ptr<const io::TriangleMesh> lower_L, double cell_mm = 0.0);
 
