@@ -49,15 +49,6 @@ Summary TimePoses(const std::vector<Eigen::Isometry3d>& poses, std::size_t count
   return Summarize(&us);
 }
 
-collision::OracleOptions OracleOptionsFor(double voxel_mm) {
-  collision::OracleOptions options;
-  options.voxel_size_mm = voxel_mm;
-  // Samples no sparser than the default spacing, and no denser than needed to
-  // give every voxel a few samples.
-  options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
-  return options;
-}
-
 BenchRow MakeRow(const std::string& method, const std::string& variant,
                  const std::string& structure) {
   BenchRow row;
@@ -68,6 +59,15 @@ BenchRow MakeRow(const std::string& method, const std::string& variant,
 }
 
 }  // namespace
+
+collision::OracleOptions OracleOptionsFor(double voxel_mm) {
+  collision::OracleOptions options;
+  options.voxel_size_mm = voxel_mm;
+  // Samples no sparser than the default spacing, and no denser than needed to
+  // give every voxel a few samples.
+  options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
+  return options;
+}
 
 std::vector<BenchRow> RunBench(const BenchCase& bc, const BenchOptions& options) {
   std::vector<BenchRow> rows;

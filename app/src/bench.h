@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "occlude/collision/oracle.h"
 #include "occlude/io/triangle_mesh.h"
 #include "timing.h"
 
@@ -61,6 +62,10 @@ struct BenchRow {
   std::string fcl_reference;  ///< the matching FCL query ("obb:boolean"), IST rows
   double speedup = std::numeric_limits<double>::quiet_NaN();  ///< FCL median / IST median
 };
+
+/// The oracle settings the benchmarks use at a voxel size (sample spacing
+/// min(0.3, 1.5 * voxel) mm).
+collision::OracleOptions OracleOptionsFor(double voxel_mm);
 
 std::vector<BenchRow> RunBench(const BenchCase& bench_case, const BenchOptions& options);
 std::string BenchCsv(const std::vector<BenchRow>& rows);

@@ -118,9 +118,10 @@ std::string RenderLineChartPng(const LineChart& chart) {
     y_lo -= pad;
     y_hi += pad;
   }
-  if (ax.log) {
-    x_lo = std::floor(x_lo);
-    x_hi = std::max(std::ceil(x_hi), x_lo + 1.0);
+  if (ax.log) {  // padded, not snapped to decades (points stay off the frame)
+    const double span = std::max(x_hi - x_lo, 0.5), mid = 0.5 * (x_lo + x_hi);
+    x_lo = std::min(x_lo, mid - 0.5 * span) - 0.06 * span;
+    x_hi = std::max(x_hi, mid + 0.5 * span) + 0.06 * span;
   } else if (!categorical) {
     const double pad = x_hi > x_lo ? 0.03 * (x_hi - x_lo) : 1.0;
     x_lo -= pad;
@@ -147,8 +148,15 @@ std::string RenderLineChartPng(const LineChart& chart) {
       x_ticks.emplace_back(static_cast<double>(i), chart.x_categories[i]);
     }
   } else if (ax.log) {
-    for (double e = ax.lo; e <= ax.hi + 1e-9; e += 1.0)
-      x_ticks.emplace_back(e, FormatTick(std::pow(10.0, e)));
+    // Decades, and 2x / 5x in between when fewer than three decades show.
+    const bool fine = std::floor(ax.hi) - std::ceil(ax.lo) < 2.0;
+    for (double e = std::floor(ax.lo); e <= ax.hi; e += 1.0) {
+      for (const double m : {1.0, 2.0, 5.0}) {
+        const double t = e + std::log10(m);
+        if ((m == 1.0 || fine) && t >= ax.lo && t <= ax.hi)
+          x_ticks.emplace_back(t, FormatTick(std::pow(10.0, t)));
+      }
+    }
   } else {
     for (const double t : LinearTicks(ax.lo, ax.hi)) x_ticks.emplace_back(t, FormatTick(t));
   }
@@ -171,6 +179,17 @@ std::string RenderLineChartPng(const LineChart& chart) {
     const cv::Size size = TextSize(label, 0.45);
     PutText(img, label, cv::Point(static_cast<int>(x) - size.width / 2, plot.y + plot.height + 20),
             0.45, kInk);
+  }
+  if (ax.log) {  // minor marks at 2..9 times each decade
+    for (double e = std::floor(ax.lo); e <= ax.hi; e += 1.0) {
+      for (int m = 2; m <= 9; ++m) {
+        const double t = e + std::log10(m);
+        if (t < ax.lo || t > ax.hi) continue;
+        const double xm = px((t - ax.lo) / (ax.hi - ax.lo));
+        cv::line(img, cv::Point2d(xm, plot.y + plot.height),
+                 cv::Point2d(xm, plot.y + plot.height - 6), kInk, 1);
+      }
+    }
   }
   cv::rectangle(img, plot, kInk, 1);
 
@@ -198,7 +217,7 @@ std::string RenderLineChartPng(const LineChart& chart) {
         continue;
       }
       const cv::Point2d p(px(ax.Fraction(s.x[i])) - plot.x, py(ay.Fraction(s.y[i])) - plot.y);
-      if (have_prev && !s.points_only) {
+      if (have_prev && !s.markers_only) {
         if (s.dashed) {
           DashedLine(clip, prev, p, color, 2);
         } else {
@@ -209,6 +228,10 @@ std::string RenderLineChartPng(const LineChart& chart) {
         cv::rectangle(clip, p - cv::Point2d(3, 3), p + cv::Point2d(3, 3), color, cv::FILLED);
       } else {
         cv::circle(clip, p, 4, color, cv::FILLED, cv::LINE_AA);
+      }
+      if (i < s.labels.size() && !s.labels[i].empty()) {
+        PutText(clip, s.labels[i], cv::Point(static_cast<int>(p.x) + 6, static_cast<int>(p.y) - 6),
+                0.4, color);
       }
       prev = p;
       have_prev = true;
@@ -238,7 +261,7 @@ std::string RenderLineChartPng(const LineChart& chart) {
     const ChartSeries& s = chart.series[k];
     const cv::Scalar color =
         kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
-    if (s.points_only) {
+    if (s.markers_only) {
       cv::circle(img, cv::Point(lx + 17, ly - 5), 4, color, cv::FILLED, cv::LINE_AA);
     } else if (s.dashed) {
       DashedLine(img, cv::Point2d(lx, ly - 5), cv::Point2d(lx + 34, ly - 5), color, 2);

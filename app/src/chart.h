@@ -13,9 +13,10 @@ namespace occlude::app {
 struct ChartSeries {
   std::string name;
   std::vector<double> x, y;
-  int color = -1;       ///< index into the chart palette; -1 = the series' position
-  bool dashed = false;  ///< e.g. the peer library's lines
-  bool points_only = false;  ///< scatter: markers, no connecting line
+  int color = -1;             ///< index into the chart palette; -1 = the series' position
+  bool dashed = false;        ///< e.g. the peer library's lines
+  bool markers_only = false;  ///< points without connecting lines (a scatter)
+  std::vector<std::string> labels = {};  ///< optional text beside each point (index as x, y)
 };
 
 /// A horizontal reference line (a deadline, a target).

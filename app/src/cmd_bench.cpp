@@ -1,17 +1,17 @@
 // `occlude bench`: the paper's query-rate experiment on a jaw pair, with FCL
-// side by side (CSV + PNG charts), and `--haptic`, the fixed-period loop.
-#include <fstream>
+// side by side (CSV + PNG charts); `--haptic`, the fixed-period loop;
+// `--paper`, the paper's result figures (bench_paper.h); `--accuracy`, speed
+// against accuracy (bench_accuracy.h). This file holds the options and the
+// dispatch; each mode's work lives in its own files.
 #include <iostream>
-#include <sstream>
-#include <thread>
 
 #include "bench.h"
+#include "bench_accuracy.h"
+#include "bench_inputs.h"
+#include "bench_paper.h"
 #include "commands.h"
 #include "fcl_peer.h"
-#include "occlude/collision/oracle.h"
-#include "occlude/io/mesh_io.h"
 #include "output_files.h"
-#include "synthetic_case.h"
 
 namespace occlude::app {
 namespace {
@@ -31,94 +31,96 @@ struct BenchArgs {
   std::vector<double> periods = {1000.0, 100.0};
   double seconds = 2.0;
   std::string out;
+  // --paper and --accuracy.
+  bool paper = false, accuracy = false;
+  std::string mesh;
+  std::vector<double> sweep_voxels = {0.8, 0.2};
+  bool no_sweep = false;
+  int poses = 16;
+  std::vector<double> offset_range = {-0.2, 1.0};
+  double truth_spacing = 0.05;
 };
 
-// "auto" (the lower-to-upper direction, snapped to a coordinate axis within
-// 30 degrees), or x, y, z with an optional sign.
-Eigen::Vector3d BenchAxis(const std::string& text, const io::TriangleMesh& lower_L,
-                          const io::TriangleMesh& upper_L) {
-  if (text == "auto") {
-    const Eigen::Vector3d a =
-        collision::EstimateArchFrame(lower_L, upper_L).occlusal_L.normalized();
-    Eigen::Index i = 0;
-    a.cwiseAbs().maxCoeff(&i);
-    if (std::abs(a[i]) > std::cos(30.0 * 3.14159265358979 / 180.0)) {
-      return Eigen::Vector3d::Unit(i) * (a[i] > 0 ? 1.0 : -1.0);
-    }
-    return a;
+// Which of the shared options were given (the modes have their own defaults).
+struct Given {
+  bool voxels = false, reps = false, offsets = false, delta = false;
+};
+
+void RunPaperCommand(const BenchArgs& args, const Given& given) {
+  PrepareOutputDir(args.out);
+  PaperOptions options;
+  if (given.voxels) options.voxels_mm = args.voxels;
+  if (given.reps) options.reps = args.reps;
+  if (given.offsets) options.offsets_mm = args.offsets;
+  if (given.delta) options.delta_mm = args.delta_mm;
+  options.sweep_voxels_mm = args.sweep_voxels;
+  options.sweep = !args.no_sweep;
+  options.seed = args.seed;
+  options.fcl = !args.no_fcl;
+  options.log = &std::cerr;
+  const std::string machine = MachineLine();
+  PaperResult result;
+  if (!args.mesh.empty()) {
+    const std::filesystem::path file(args.mesh);
+    result = RunPaper(LoadBenchMesh(file, "--mesh needs a mesh file"), file.stem().string(),
+                      nullptr, options);
+  } else {
+    const BenchCase bc = LoadBenchCase(args.case_dir, args.synthetic, args.seed, args.axis);
+    result = RunPaper(bc.lower_L, bc.name + " lower", &bc, options);
   }
-  const bool negative = !text.empty() && text[0] == '-';
-  const std::string name = (negative || (!text.empty() && text[0] == '+')) ? text.substr(1) : text;
-  if (name != "x" && name != "y" && name != "z") {
-    throw UserError("--axis: '" + text + "' is not an axis (use auto, x, y, z, -x, -y or -z)");
+  for (const auto& [file, bytes] : PaperFiles(result, machine)) {
+    WriteFileAtomic(std::filesystem::path(args.out) / file, bytes);
   }
-  const Eigen::Vector3d axis = Eigen::Vector3d::Unit(name[0] - 'x');
-  return negative ? Eigen::Vector3d(-axis) : axis;
+  for (const auto& [file, bytes] : PaperFiles(result, machine)) {
+    if (file == "paper-summary.txt") std::cout << bytes;
+  }
+  std::cerr << "bench: wrote the paper's figures to " << args.out << "\n";
 }
 
-std::shared_ptr<const io::TriangleMesh> LoadCaseMesh(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) {
-    throw UserError(file.string() +
-                    ": not found (--case needs a folder with upper.stl and lower.stl)");
-  }
-  try {
-    io::LoadReport report;
-    auto mesh = std::make_shared<io::TriangleMesh>(io::LoadMesh(file, {}, &report));
-    for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
-    return mesh;
-  } catch (const io::MeshError& e) {
-    throw UserError(e.what());
-  }
-}
-
-std::string ReadFirstLine(const char* file, const std::string& prefix) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (prefix.empty() || line.rfind(prefix, 0) == 0) return line;
-  }
-  return "";
-}
-
-// The machine, stated with every figure: cores, CPU model, load at the start.
-std::string MachineLine() {
-  std::string cpu = ReadFirstLine("/proc/cpuinfo", "model name");
-  const auto colon = cpu.find(':');
-  cpu = colon == std::string::npos ? std::string("unknown CPU") : cpu.substr(colon + 2);
-  std::istringstream load(ReadFirstLine("/proc/loadavg", ""));
-  std::string load1;
-  load >> load1;
-  return std::to_string(std::thread::hardware_concurrency()) + " cores (" + cpu + "), load " +
-         (load1.empty() ? "?" : load1) + " at start";
+void RunAccuracyCommand(const BenchArgs& args, const Given& given) {
+  PrepareOutputDir(args.out);
+  const BenchCase bc = LoadBenchCase(args.case_dir, args.synthetic, args.seed, args.axis);
+  AccuracyOptions options;
+  if (given.voxels) options.voxels_mm = args.voxels;
+  if (given.reps) options.reps = args.reps;
+  options.poses = args.poses;
+  options.offset_lo_mm = args.offset_range[0];
+  options.offset_hi_mm = args.offset_range[1];
+  options.jitter_deg = args.jitter_deg;
+  options.jitter_mm = args.jitter_mm;
+  options.seed = args.seed;
+  options.delta_mm = args.delta_mm;
+  options.truth_spacing_mm = args.truth_spacing;
+  options.fcl = !args.no_fcl;
+  options.log = &std::cerr;
+  const std::string machine = MachineLine();
+  const std::vector<AccuracyRow> rows = RunAccuracy(bc, options);
+  const std::string about =
+      "occlude bench --accuracy, case " + bc.name + " (" +
+      std::to_string(bc.lower_L->num_triangles()) + " lower / " +
+      std::to_string(bc.upper_U->num_triangles()) + " upper triangles); machine: " + machine +
+      "\n" + std::to_string(options.poses) + " poses: offsets in [" +
+      std::to_string(options.offset_lo_mm) + ", " + std::to_string(options.offset_hi_mm) +
+      "] mm along the occlusal axis, jitter up to " + std::to_string(options.jitter_deg) +
+      " deg and " + std::to_string(options.jitter_mm) + " mm, seed " +
+      std::to_string(options.seed) + "; delta " + std::to_string(options.delta_mm) +
+      " mm; truth spacing " + std::to_string(options.truth_spacing_mm) + " mm";
+  const std::filesystem::path out(args.out);
+  const std::string csv = AccuracyCsv(rows, about);
+  const auto charts =
+      AccuracyCharts(rows, bc.name + " | " + machine + " | " + std::to_string(options.poses) +
+                               " poses, thread CPU");
+  WriteFileAtomic(out / "accuracy.csv", csv);
+  WriteFileAtomic(out / "accuracy-table.json", AccuracyTableJson(rows, bc.name, machine, options));
+  for (const auto& [file, png] : charts) WriteFileAtomic(out / file, png);
+  std::cout << csv;
+  std::cerr << "bench: wrote accuracy.csv, accuracy-table.json and the charts to " << args.out
+            << "\n";
 }
 
 void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   PrepareOutputDir(args.out);
-  BenchCase bc;
-  if (!args.case_dir.empty()) {
-    const std::filesystem::path dir(args.case_dir);
-    if (!std::filesystem::is_directory(dir)) {
-      throw UserError("--case: '" + args.case_dir +
-                      "' is not a folder (it must hold upper.stl and lower.stl)");
-    }
-    bc.name =
-        dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-    bc.lower_L = LoadCaseMesh(dir / "lower.stl");
-    bc.upper_U = LoadCaseMesh(dir / "upper.stl");  // given in L at the bite: U = L
-    bc.axis_L = BenchAxis(args.axis, *bc.lower_L, *bc.upper_U);
-  } else {
-    io::SyntheticJawOptions options;
-    options.triangles_per_jaw = args.synthetic;
-    options.seed = args.seed;
-    const io::SyntheticJawPair jaws = MakeSyntheticOrExplain(options);
-    bc.name = "synthetic-" + std::to_string(args.synthetic);
-    bc.lower_L = std::make_shared<io::TriangleMesh>(jaws.lower_L);
-    bc.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
-    bc.X_LU_ref = jaws.X_LU;
-    bc.axis_L = args.axis == "auto"
-                    ? jaws.occlusal_axis_L
-                    : BenchAxis(args.axis, *bc.lower_L, bc.upper_U->Transformed(bc.X_LU_ref));
-  }
+  const BenchCase bc = LoadBenchCase(args.case_dir, args.synthetic, args.seed, args.axis);
   const std::string machine = MachineLine();
   std::cerr << "bench: case " << bc.name << " (" << bc.lower_L->num_triangles() << " lower / "
             << bc.upper_U->num_triangles() << " upper triangles), axis (" << bc.axis_L.transpose()
@@ -183,18 +185,23 @@ void AddBenchCommand(CLI::App& app) {
                                     "Use the generated jaw pair with this many triangles per jaw");
   case_opt->excludes(synth_opt);
   synth_opt->excludes(case_opt);
-  auto* voxel_opt = cmd->add_option("--voxel", args->voxels, "Voxel sizes, mm (comma separated)")
-                        ->delimiter(',')
-                        ->capture_default_str()
-                        ->check(PositiveMm());
-  cmd->add_option("--offsets", args->offsets, "Offsets along the axis, mm (default 5 ... -0.2)")
+  auto* voxel_opt =
+      cmd->add_option("--voxel", args->voxels,
+                      "Voxel sizes, mm (comma separated; --paper: 10,5,1,0.8,0.4,0.2,0.1)")
+          ->delimiter(',')
+          ->capture_default_str()
+          ->check(PositiveMm());
+  cmd->add_option("--offsets", args->offsets,
+                  "Offsets along the axis, mm (default 5 ... -0.2; --paper: 40 ... -0.2)")
       ->delimiter(',');
-  cmd->add_option("--reps", args->reps, "Jittered poses per offset")
+  cmd->add_option("--reps", args->reps,
+                  "Jittered poses per offset (--paper: 9; --accuracy: timed queries per pose, 3)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--seed", args->seed, "Seed of the jitter, the trajectory and the synthetic pair")
       ->capture_default_str();
-  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")
+  cmd->add_option("--delta", args->delta_mm,
+                  "Contact band, mm (--paper: 0, the paper's overlap test)")
       ->capture_default_str()
       ->check(BandMm());
   cmd->add_option("--axis", args->axis, "Occlusal axis: auto, x, y, z, -x, -y, -z")
@@ -216,12 +223,53 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.01, 600.0));
   cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->callback([cmd, args, voxel_opt] {
-    if (args->case_dir.empty() && args->synthetic == 0) {
-      throw UserError("bench: give --case DIR (with upper.stl and lower.stl) or --synthetic N");
+  // --paper and --accuracy.
+  auto* paper_opt =
+      cmd->add_flag("--paper", args->paper,
+                    "Reproduce the paper's figures (voxels, build, sphere volume, query rate)");
+  auto* accuracy_opt = cmd->add_flag("--accuracy", args->accuracy,
+                                     "Speed against accuracy of every method (exact ground truth)");
+  paper_opt->excludes(accuracy_opt);
+  accuracy_opt->excludes(paper_opt);
+  auto* mesh_opt =
+      cmd->add_option("--mesh", args->mesh, "--paper on one mesh file (no query-rate figure)");
+  mesh_opt->excludes(case_opt)->excludes(synth_opt);
+  cmd->add_flag("--no-sweep", args->no_sweep, "--paper: skip Fig. 10 (the query-rate sweep)");
+  cmd->add_option("--sweep-voxel", args->sweep_voxels, "--paper: voxel sizes of Fig. 10, mm")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(PositiveMm());
+  cmd->add_option("--poses", args->poses, "--accuracy: seeded poses about the bite")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--offset-range", args->offset_range,
+                  "--accuracy: offsets along the axis, mm (lo,hi)")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  cmd->add_option("--truth-spacing", args->truth_spacing,
+                  "--accuracy: spacing of the ground-truth upper samples, mm")
+      ->capture_default_str()
+      ->check(MmBetween(0.001, true, 1.0, "a spacing in mm between 0.001 and 1"));
+  auto* reps_opt = cmd->get_option("--reps");
+  auto* offsets_opt = cmd->get_option("--offsets");
+  auto* delta_opt = cmd->get_option("--delta");
+  cmd->callback([args, voxel_opt, reps_opt, offsets_opt, delta_opt] {
+    const Given given{voxel_opt->count() > 0, reps_opt->count() > 0, offsets_opt->count() > 0,
+                      delta_opt->count() > 0};
+    if (!args->mesh.empty() && !args->paper) {
+      throw UserError("--mesh: only with --paper (the other modes need a jaw pair: --case DIR)");
     }
-    (void)cmd;
-    RunBenchCommand(*args, voxel_opt->count() > 0);
+    if (args->case_dir.empty() && args->synthetic == 0 && args->mesh.empty()) {
+      throw UserError(std::string("bench: give --case DIR (with upper.stl and lower.stl)") +
+                      (args->paper ? ", --mesh FILE" : "") + " or --synthetic N");
+    }
+    if (args->offset_range[0] >= args->offset_range[1]) {
+      throw UserError("--offset-range: give lo,hi with lo < hi (mm), e.g. -0.2,1");
+    }
+    if (args->paper) return RunPaperCommand(*args, given);
+    if (args->accuracy) return RunAccuracyCommand(*args, given);
+    RunBenchCommand(*args, given.voxels);
   });
 }
 

@@ -142,6 +142,20 @@ std::size_t FclPeer::CollideAll(const Eigen::Isometry3d& X_LU, std::size_t max_c
   return impl_->RunCollide(X_LU, std::max<std::size_t>(max_contacts, 1));
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> FclPeer::IntersectingPairs(
+    const Eigen::Isometry3d& X_LU, std::size_t max_contacts) const {
+  fcl::CollisionRequestd request(std::max<std::size_t>(max_contacts, 1), /*enable_contact=*/false);
+  fcl::CollisionResultd result;
+  fcl::collide(impl_->lower->collisionGeometry().get(), impl_->lower->getTransform(),
+               impl_->upper->collisionGeometry().get(), X_LU, request, result);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < result.numContacts(); ++i) {
+    const fcl::Contactd& c = result.getContact(i);
+    pairs.emplace_back(static_cast<std::size_t>(c.b1), static_cast<std::size_t>(c.b2));
+  }
+  return pairs;
+}
+
 FclQueryResult FclPeer::Distance(const Eigen::Isometry3d& X_LU) const {
   if (impl_->bv != FclBv::kOBBRSS) {
     throw std::invalid_argument(
@@ -195,6 +209,10 @@ std::size_t FclPeer::approx_bytes() const { ThrowNoFcl(); }
 bool FclPeer::Collide(const Eigen::Isometry3d& /*X_LU*/) const { ThrowNoFcl(); }
 std::size_t FclPeer::CollideAll(const Eigen::Isometry3d& /*X_LU*/,
                                 std::size_t /*max_contacts*/) const {
+  ThrowNoFcl();
+}
+std::vector<std::pair<std::size_t, std::size_t>> FclPeer::IntersectingPairs(
+    const Eigen::Isometry3d& /*X_LU*/, std::size_t /*max_contacts*/) const {
   ThrowNoFcl();
 }
 FclQueryResult FclPeer::Distance(const Eigen::Isometry3d& /*X_LU*/) const { ThrowNoFcl(); }

@@ -14,6 +14,8 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "occlude/io/triangle_mesh.h"
 
@@ -70,6 +72,11 @@ class FclPeer {
   /// without computing contact points, whereas enable_contact = true computes up to two points
   /// per pair and counts each as a contact (so the count would no longer be the pair count).
   std::size_t CollideAll(const Eigen::Isometry3d& X_LU, std::size_t max_contacts = 100000) const;
+  /// The intersecting triangle pairs at pose X_LU as (lower triangle, upper triangle) indices
+  /// of the meshes given to the constructor, at most max_contacts (>= 1); the same query as
+  /// CollideAll.
+  std::vector<std::pair<std::size_t, std::size_t>> IntersectingPairs(
+      const Eigen::Isometry3d& X_LU, std::size_t max_contacts = 100000) const;
   /// Minimum distance and the nearest points at pose X_LU (result.collide is set when the
   /// distance is 0). Only FclBv::kOBBRSS: FCL 0.7 registers no OBB mesh-mesh distance (it would
   /// print a warning and return no distance), so kOBB throws std::invalid_argument.

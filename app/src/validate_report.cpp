@@ -162,7 +162,7 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   color = 0;
   for (const planner::SolverKind s : options.solvers) {
     ChartSeries pts{planner::ToString(s), {}, {}, color++, false};
-    pts.points_only = true;
+    pts.markers_only = true;
     for (const ValidateRun& r : result.runs) {
       if (r.solver != s) continue;
       pts.x.push_back(std::max(1e-3, r.seconds));
