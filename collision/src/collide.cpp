@@ -526,9 +526,15 @@ class BoundCellTraversal {
         res_->cells_b.push_back(n.node);
         continue;
       }
-      std::uint32_t child = b_.oct->first_child[n.node];
-      for (unsigned mask = b_.oct->child_mask[n.node]; mask != 0; mask &= mask - 1, ++child) {
-        const NodeRef c = S::Child(b_, n, child, __builtin_ctz(mask));
+      // Children pushed last slot first, so that they pop in slot order: the
+      // cells come out in ascending node (Morton) order, which keeps the
+      // caller's walk through per-cell data and the other tree's space forward.
+      const unsigned mask = b_.oct->child_mask[n.node];
+      std::uint32_t child = b_.oct->first_child[n.node] + static_cast<std::uint32_t>(__builtin_popcount(mask));
+      for (unsigned m = mask; m != 0;) {
+        const int slot = 31 - __builtin_clz(m);
+        m &= ~(1u << slot);
+        const NodeRef c = S::Child(b_, n, --child, slot);
         if (!Far<kMode>(c)) stack->push_back(c);
       }
     }

@@ -24,6 +24,12 @@ std::uint64_t BrickKey(const Eigen::Vector3i& b) {
 
 int CellIndex(int x, int y, int z) { return x | y << kBrickBits | z << (2 * kBrickBits); }
 
+/// floor(x) for |x| < 2^31 without a libm call.
+int FloorInt(double x) {
+  const int t = static_cast<int>(x);  // truncation towards zero
+  return t - (x < static_cast<double>(t) ? 1 : 0);
+}
+
 // Bricks under construction: a hash from brick key to index, every new brick
 // filled with the cap. Indices stay valid as bricks are added (pointers do not).
 struct BrickMap {
@@ -110,6 +116,7 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
   Level out;
   out.s = std::ldexp(grid.voxel_size_mm, level);
   out.inv_s = 1.0 / out.s;
+  out.s2 = out.s * out.s;
   out.cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
   // Rounded down so that the bound never exceeds the exact distance.
   for (int q = 0; q < 256; ++q) {
@@ -133,6 +140,7 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
   BrickMap field = Pass(Pass(Pass(occupied, 0, t), 1, t), 2, t);
   // Keep the bricks holding some value below the cap (others read as the cap anyway).
   out.index.Reset(field.bricks.size());
+  std::vector<Eigen::Vector3i> kept;
   for (std::size_t i = 0; i < field.bricks.size(); ++i) {
     bool useful = false;
     for (const std::uint8_t v : field.bricks[i]) useful = useful || v < out.cap;
@@ -140,35 +148,72 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
     bool inserted = false;
     out.index.Insert(BrickKey(field.coords[i]), static_cast<std::uint32_t>(out.bricks.size()), &inserted);
     out.bricks.push_back(field.bricks[i]);
+    kept.push_back(field.coords[i]);
   }
   out.bricks.shrink_to_fit();
+  out.BuildTable(kept);
   return out;
+}
+
+void DistanceBound::Level::BuildTable(const std::vector<Eigen::Vector3i>& coords) {
+  table.clear();
+  if (coords.empty()) return;
+  Eigen::Vector3i lo = coords[0], hi = coords[0];
+  for (const auto& c : coords) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                            static_cast<std::size_t>(dims.z());
+  // 4 bytes per box cell against 512 per brick: affordable up to 32 cells per brick.
+  constexpr std::size_t kMaxCellsPerBrick = 32;
+  if (cells > kMaxCellsPerBrick * coords.size() + (std::size_t{1} << 16)) return;
+  table_lo = lo;
+  table_dims = dims;
+  table.assign(cells, detail::KeyIndexHash::kNotFound);
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const Eigen::Vector3i c = coords[i] - lo;
+    table[static_cast<std::size_t>(c.x()) +
+          static_cast<std::size_t>(dims.x()) *
+              (static_cast<std::size_t>(c.y()) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(c.z()))] =
+        static_cast<std::uint32_t>(i);
+  }
+}
+
+inline std::uint32_t DistanceBound::Level::BrickIndex(const Eigen::Vector3i& b) const {
+  if (table.empty()) return index.Find(BrickKey(b));
+  const auto x = static_cast<std::uint32_t>(b.x() - table_lo.x());
+  const auto y = static_cast<std::uint32_t>(b.y() - table_lo.y());
+  const auto z = static_cast<std::uint32_t>(b.z() - table_lo.z());
+  const auto nx = static_cast<std::uint32_t>(table_dims.x()), ny = static_cast<std::uint32_t>(table_dims.y());
+  if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(table_dims.z())) return detail::KeyIndexHash::kNotFound;
+  return table[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
 }
 
 bool DistanceBound::Level::CellQ(const Eigen::Vector3d& q, std::uint8_t* value,
                                  Eigen::Vector3d* offset) const {
   constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
-  if (!(q.cwiseAbs().maxCoeff() < kRange)) return false;  // also NaN
-  const Eigen::Vector3d f(std::floor(q.x()), std::floor(q.y()), std::floor(q.z()));
-  const Eigen::Vector3i c = f.cast<int>();
-  *offset = q - f - Eigen::Vector3d::Constant(0.5);
-  const Eigen::Vector3i b(c.x() >> kBrickBits, c.y() >> kBrickBits, c.z() >> kBrickBits);
-  const std::uint32_t i = index.Find(BrickKey(b));
+  if (!(std::abs(q.x()) < kRange && std::abs(q.y()) < kRange && std::abs(q.z()) < kRange)) return false;  // also NaN
+  const int cx = FloorInt(q.x()), cy = FloorInt(q.y()), cz = FloorInt(q.z());
+  *offset = Eigen::Vector3d(q.x() - cx - 0.5, q.y() - cy - 0.5, q.z() - cz - 0.5);
+  const std::uint32_t i = BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
   if (i == detail::KeyIndexHash::kNotFound) {
     *value = cap;
     return true;
   }
   const int m = kBrickEdge - 1;
-  *value = bricks[i][static_cast<std::size_t>(CellIndex(c.x() & m, c.y() & m, c.z() & m))];
+  *value = bricks[i][static_cast<std::size_t>(CellIndex(cx & m, cy & m, cz & m))];
   return true;
 }
 
 double DistanceBound::LowerBound(const Eigen::Vector3d& p_F) const {
   double best = -std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d p = p_F - origin_;
   for (const Level& level : levels_) {
     std::uint8_t value = 0;
     Eigen::Vector3d offset;
-    if (!level.CellQ((p_F - origin_) * level.inv_s, &value, &offset)) return best;
+    if (!level.CellQ(p * level.inv_s, &value, &offset)) return best;
     best = std::max(best, level.m_mm[value] - level.s * offset.norm() * (1.0 + 1e-12));
     if (value < level.cap) break;  // unsaturated: a coarser level is no tighter
   }
@@ -176,14 +221,15 @@ double DistanceBound::LowerBound(const Eigen::Vector3d& p_F) const {
 }
 
 bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
+  const Eigen::Vector3d p = p_F - origin_;
   for (const Level& level : levels_) {
     std::uint8_t value = 0;
     Eigen::Vector3d offset;
-    if (!level.CellQ((p_F - origin_) * level.inv_s, &value, &offset)) return false;
+    if (!level.CellQ(p * level.inv_s, &value, &offset)) return false;
     // m - |offset| s > radius without the square root: m - radius > 0 and
     // (m - radius)^2 > |offset|^2 s^2.
     const double margin = level.m_mm[value] - radius;
-    if (margin > 0.0 && margin * margin > offset.squaredNorm() * level.s * level.s * (1.0 + 1e-9)) {
+    if (margin > 0.0 && margin * margin > offset.squaredNorm() * level.s2 * (1.0 + 1e-9)) {
       return true;
     }
     if (value < level.cap) return false;  // unsaturated: a coarser level is no tighter
@@ -200,7 +246,8 @@ std::size_t DistanceBound::num_bricks() const {
 std::size_t DistanceBound::MemoryBytes() const {
   std::size_t bytes = levels_.capacity() * sizeof(Level);
   for (const Level& level : levels_) {
-    bytes += level.bricks.capacity() * sizeof(Brick) + level.index.MemoryBytes();
+    bytes += level.bricks.capacity() * sizeof(Brick) + level.index.MemoryBytes() +
+             level.table.capacity() * sizeof(std::uint32_t);
   }
   return bytes;
 }

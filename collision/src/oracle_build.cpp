@@ -193,6 +193,7 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     const std::uint32_t end = oct.level_end[static_cast<std::size_t>(level)];
     cell_center_U_.assign(end - begin, Eigen::Vector3f::Zero());
     cell_radius_.assign(end - begin, 0.0f);
+    sample_offset_U_.assign(sample_p_U_.size(), Eigen::Vector4f::Zero());
     for (std::uint32_t n = begin; n < end; ++n) {
       const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
       if (first == last) continue;
@@ -208,6 +209,9 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       }
       cell_center_U_[n - begin] = c;
       cell_radius_[n - begin] = static_cast<float>(radius * (1.0 + 1e-6) + 1e-6);
+      for (auto i = first; i < last; ++i) {
+        sample_offset_U_[i].head<3>() = (sample_p_U_[i].cast<double>() - c.cast<double>()).cast<float>();
+      }
     }
   }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
@@ -221,7 +225,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 
 std::size_t JawOracle::MemoryBytes() const {
   return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
-         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_area_.capacity() * sizeof(float) +
+         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
+         sample_area_.capacity() * sizeof(float) +
          sample_part_.capacity() * sizeof(std::int32_t) +
          voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +

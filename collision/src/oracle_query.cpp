@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "occlude/collision/oracle.h"
+#include "occlude/collision/sdf_sampler.h"
 #include "occlude/collision/sphere_table.h"
 
 namespace occlude::collision {
@@ -49,31 +50,30 @@ void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
 
 }  // namespace
 
-void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                              const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
-  ++result->samples_evaluated;
-  double d = 0.0;
-  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
-  bool known = false;
-  switch (request.level) {
-    case AccuracyLevel::kVoxel: known = sdf_.CellValue(p_L, &d); break;
-    case AccuracyLevel::kSubVoxel: known = sdf_.Interpolate(p_L, &d, &grad); break;
-    case AccuracyLevel::kExact: {
-      SignedDistanceSample s;
-      known = sdf_.Exact(p_L, Reach(request), &s);
-      d = s.distance;
-      grad = s.normal;
-      break;
-    }
+// Per-query constants shared by the cells of one query.
+struct JawOracle::QueryContext {
+  const Eigen::Isometry3d& X_LU;
+  const OracleRequest& request;
+  SdfSampler sampler;
+  Eigen::Matrix4f M;  ///< U offsets (mm) -> L voxel units of the field: R_LU / s (top-left 3x3)
+  double outer;       ///< samples above this distance count for nothing but the minimum
+  SdfSampler::GridPoint cell;  ///< grid point of the current cell's centre in L
+  QueryContext(const Eigen::Isometry3d& X, const OracleRequest& r, const NarrowBandSdf& sdf)
+      : X_LU(X), request(r), sampler(sdf),
+        M(Eigen::Matrix4f::Zero()),
+        outer(std::max(r.contact_band_mm, r.residuals ? r.residual_band_mm : 0.0)) {
+    M.topLeftCorner<3, 3>() = (X.linear() * (1.0 / sdf.voxel_size_mm())).cast<float>();
   }
-  if (!known) {
-    if (!may_be_deep) return;
-    // Outside the measured range: deep inside the lower jaw, or simply far away.
-    const VoxelGrid& g = lower_.grid();
-    if (g.Classify(g.VoxelOf(p_L)) == VoxelClass::kInterior) ++result->deep_samples;
-    return;
-  }
-  result->min_distance_mm = std::min(result->min_distance_mm, d);
+};
+
+void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const {
+  // Outside the measured range: deep inside the lower jaw, or simply far away.
+  const VoxelGrid& g = lower_.grid();
+  if (g.Classify(g.VoxelOf(p_L)) == VoxelClass::kInterior) ++result->deep_samples;
+}
+
+void JawOracle::Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
+                           std::int32_t part, const OracleRequest& request, OracleResult* result) const {
   PartTotals& pt = result->parts[static_cast<std::size_t>(part)];
   if (d < 0.0 && -d <= request.penetration_search_mm + sdf_.band_mm()) {
     result->penetration_area_mm2 += area;
@@ -109,21 +109,66 @@ void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int3
   }
 }
 
-void JawOracle::EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU,
-                             const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
+void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, bool may_be_deep, OracleResult* result) const {
+  const OracleRequest& request = q->request;
   const std::uint32_t first = node_leaf_begin_[node], last = node_leaf_end_[node];
   if (request.level == AccuracyLevel::kVoxel) {
     for (std::uint32_t v = first; v < last; ++v) {
       if (voxel_area_[v] <= 0.0f) continue;
-      EvaluatePoint(X_LU * voxel_centroid_U_[v].cast<double>(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
-                    may_be_deep, result);
+      ++result->samples_evaluated;
+      const Eigen::Vector3d p_L = q->X_LU * voxel_centroid_U_[v].cast<double>();
+      const SdfSampler::GridPoint g = q->sampler.GridPointOf(p_L);
+      double d = 0.0;
+      if (!q->sampler.CellValue(g.base, g.local, &d)) {
+        if (may_be_deep) CountIfDeep(p_L, result);
+        continue;
+      }
+      result->min_distance_mm = std::min(result->min_distance_mm, d);
+      Accumulate(p_L, d, Eigen::Vector3d::Zero(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
+                 result);
     }
     return;
   }
-  for (auto i = voxel_sample_begin_[first]; i < voxel_sample_begin_[last]; ++i) {
-    EvaluatePoint(X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]), sample_part_[i], request,
-                  may_be_deep, result);
+  const std::uint32_t begin = voxel_sample_begin_[first], end = voxel_sample_begin_[last];
+  result->samples_evaluated += end - begin;
+  if (request.level == AccuracyLevel::kExact) {
+    for (auto i = begin; i < end; ++i) {
+      const Eigen::Vector3d p_L = q->X_LU * sample_p_U_[i].cast<double>();
+      SignedDistanceSample s;
+      if (!sdf_.Exact(p_L, Reach(request), &s)) {
+        if (may_be_deep) CountIfDeep(p_L, result);
+        continue;
+      }
+      result->min_distance_mm = std::min(result->min_distance_mm, s.distance);
+      Accumulate(p_L, s.distance, s.normal, static_cast<double>(sample_area_[i]), sample_part_[i], request, result);
+    }
+    return;
   }
+  // Sub-voxel: the samples' offsets from the cell centre, rotated in float into
+  // the field's voxel units about the centre's grid point (small numbers, so
+  // float loses nothing that matters), then trilinear in the remembered brick.
+  const SdfSampler::GridPoint c = q->cell;
+  const Eigen::Matrix4f M = q->M;
+  const double outer = q->outer;
+  SdfSampler sampler = q->sampler;  // a local copy stays in registers
+  double min_d = result->min_distance_mm;
+  for (auto i = begin; i < end; ++i) {
+    const Eigen::Array4f local = c.local + (M * sample_offset_U_[i]).array();
+    float df = 0.0f;
+    if (!sampler.Value(c.base, local, &df)) {
+      if (may_be_deep) CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), result);
+      continue;
+    }
+    const double d = static_cast<double>(df);
+    min_d = std::min(min_d, d);
+    if (d > outer) continue;  // the common case: counts for nothing else
+    Eigen::Vector3f grad = Eigen::Vector3f::Zero();
+    if (request.residuals) sampler.ValueAndGradient(c.base, local, &df, &grad);
+    Accumulate(q->X_LU * sample_p_U_[i].cast<double>(), d, grad.cast<double>(),
+               static_cast<double>(sample_area_[i]), sample_part_[i], request, result);
+  }
+  q->sampler = sampler;
+  result->min_distance_mm = min_d;
 }
 
 void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request,
@@ -158,12 +203,15 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   const double interp_error = kCubeCircumradius * sdf_.voxel_size_mm();
   constexpr double kSqrt3 = 1.7320508075688772;
   constexpr double kSlackMm = 1e-6;  // float rounding of the stored values
+  QueryContext q(X_LU, request, sdf_);
   for (const std::uint32_t node : found.cells_b) {
     if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]]) continue;
     const double r = static_cast<double>(cell_radius_[node - level_begin]);
-    double d = 0.0;
     const Eigen::Vector3d c_L = X_LU * cell_center_U_[node - level_begin].cast<double>();
-    const bool known = sdf_.Interpolate(c_L, &d);
+    q.cell = q.sampler.GridPointOf(c_L);
+    float df = 0.0f;
+    const bool known = q.sampler.Value(q.cell.base, q.cell.local, &df);
+    const double d = static_cast<double>(df);
     if (known && d > outer + std::min(kSqrt3 * r, r + 2.0 * interp_error) + kSlackMm) continue;
     // A centre known to be at d > -band + r + 0.866 s has every sample within
     // the band or outside it (same Lipschitz argument): none is deep. A centre
@@ -172,7 +220,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
     const bool may_be_deep =
         known ? d <= r + interp_error - sdf_.band_mm()
               : lower_.grid().Classify(lower_.grid().VoxelOf(c_L)) == VoxelClass::kInterior;
-    EvaluateCell(node, X_LU, request, may_be_deep, result);
+    EvaluateCell(node, &q, may_be_deep, result);
   }
 
   const double lr = result->left_share + result->right_share;

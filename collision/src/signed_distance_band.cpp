@@ -228,6 +228,36 @@ void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
     }
   }
   band_ = band;
+  BuildBrickTable();
+}
+
+void NarrowBandSdf::BuildBrickTable() {
+  brick_table_.clear();
+  const auto& bricks = band_.bricks();
+  if (bricks.empty()) return;
+  Eigen::Vector3i lo = MortonDecode(bricks[0].key), hi = lo;
+  for (const auto& b : bricks) {
+    const Eigen::Vector3i c = MortonDecode(b.key);
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                            static_cast<std::size_t>(dims.z());
+  // 4 bytes per box cell against 512 per brick: affordable up to 32 cells per
+  // brick (the box of a jaw's band holds about 5-10), else the hash serves.
+  constexpr std::size_t kMaxCellsPerBrick = 32;
+  if (cells > kMaxCellsPerBrick * bricks.size() + (std::size_t{1} << 16)) return;
+  brick_lo_ = lo;
+  brick_dims_ = dims;
+  brick_table_.assign(cells, detail::KeyIndexHash::kNotFound);
+  for (std::size_t i = 0; i < bricks.size(); ++i) {
+    const Eigen::Vector3i c = MortonDecode(bricks[i].key) - lo;
+    brick_table_[static_cast<std::size_t>(c.x()) +
+                 static_cast<std::size_t>(dims.x()) *
+                     (static_cast<std::size_t>(c.y()) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(c.z()))] =
+        static_cast<std::uint32_t>(i);
+  }
 }
 
 void NarrowBandSdf::TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best,
@@ -371,9 +401,10 @@ const float* NarrowBandSdf::Locate(const Eigen::Vector3d& p, Eigen::Vector3f* lo
   const double hi = kMortonMaxCoord - shift_;
   if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
   const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
-  const std::uint32_t i = band_.BrickIndex(MortonEncode(ijk.x() >> 2, ijk.y() >> 2, ijk.z() >> 2));
-  if (i == detail::KeyIndexHash::kNotFound) return nullptr;
-  const CornerBrick& b = corner_bricks_[i];
+  const CornerBrick* brick = BrickAt(static_cast<std::uint32_t>(ijk.x()) >> 2, static_cast<std::uint32_t>(ijk.y()) >> 2,
+                                     static_cast<std::uint32_t>(ijk.z()) >> 2);
+  if (brick == nullptr) return nullptr;
+  const CornerBrick& b = *brick;
   const Eigen::Vector3i l(ijk.x() & 3, ijk.y() & 3, ijk.z() & 3);
   const int bit = (l.x() & 1) | (l.y() & 1) << 1 | (l.z() & 1) << 2 | (l.x() >> 1) << 3 | (l.y() >> 1) << 4 |
                   (l.z() >> 1) << 5;
@@ -419,7 +450,7 @@ std::size_t NarrowBandSdf::MemoryBytes() const {
          original_.capacity() * sizeof(std::uint32_t) +
          (tri_offsets_.capacity() + tri_indices_.capacity()) * sizeof(std::uint32_t) +
          surface_.MemoryBytes() + band_.MemoryBytes() +
-         corner_bricks_.capacity() * sizeof(CornerBrick);
+         corner_bricks_.capacity() * sizeof(CornerBrick) + brick_table_.capacity() * sizeof(std::uint32_t);
 }
 
 }  // namespace occlude::collision

@@ -71,11 +71,20 @@ class DistanceBound {
   struct Level {
     double s = 0.0;  ///< cell edge, mm
     double inv_s = 0.0;
+    double s2 = 0.0;  ///< s^2
     double cap_mm = 0.0;
     std::uint8_t cap = 0;
     std::array<double, 256> m_mm{};  ///< Q -> m in mm, rounded down
     std::vector<Brick> bricks;
     detail::KeyIndexHash index;  ///< brick key -> index into bricks
+    /// Dense brick index over the bricks' bounding box (coordinates - table_lo,
+    /// x fastest; kNotFound = no brick), one load instead of a hash probe;
+    /// empty when the box is too sparse to afford (then `index` serves).
+    std::vector<std::uint32_t> table;
+    Eigen::Vector3i table_lo = Eigen::Vector3i::Zero();
+    Eigen::Vector3i table_dims = Eigen::Vector3i::Zero();
+    void BuildTable(const std::vector<Eigen::Vector3i>& coords);
+    std::uint32_t BrickIndex(const Eigen::Vector3i& b) const;
     /// Q of the cell holding cell coordinates q (continuous), and q minus the
     /// cell's centre; false when q is out of the key range or NaN.
     bool CellQ(const Eigen::Vector3d& q, std::uint8_t* value, Eigen::Vector3d* offset) const;

@@ -143,12 +143,16 @@ class JawOracle {
   std::size_t MemoryBytes() const;
 
  private:
-  /// may_be_deep: some sample of the cell may lie inside the lower beyond the
-  /// field's band (only then is an unknown sample classified, O(log n)).
-  void EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU, const OracleRequest& request,
-                    bool may_be_deep, OracleResult* result) const;
-  void EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                     const OracleRequest& request, bool may_be_deep, OracleResult* result) const;
+  struct QueryContext;  // per-query constants and the field sampler (oracle_query.cpp)
+  /// Evaluates the samples (or, at voxel level, the voxel centroids) of one
+  /// upper cell. may_be_deep: some sample of the cell may lie inside the lower
+  /// beyond the field's band (only then is an unknown sample classified, O(log n)).
+  void EvaluateCell(std::uint32_t node, QueryContext* q, bool may_be_deep, OracleResult* result) const;
+  /// Adds one sample at signed distance d (gradient only needed for residuals).
+  void Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
+                  std::int32_t part, const OracleRequest& request, OracleResult* result) const;
+  /// An unknown sample (outside the field's band, or no triangle within reach).
+  void CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const;
 
   OracleOptions options_;
   SphereTree lower_, upper_;
@@ -156,6 +160,7 @@ class JawOracle {
   ArchFrame arch_;
   // Upper samples in U, grouped by upper surface voxel (CSR, voxel order).
   std::vector<Eigen::Vector3f> sample_p_U_;
+  std::vector<Eigen::Vector4f> sample_offset_U_;  ///< p_U minus its cell's centre (cell_center_U_), w = 0
   std::vector<float> sample_area_;
   std::vector<std::int32_t> sample_part_;
   std::vector<std::uint32_t> voxel_sample_begin_;  ///< size = upper voxels + 1

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "occlude/collision/key_index_hash.h"
+#include "occlude/collision/morton.h"
 #include "occlude/collision/voxel_grid.h"
 #include "occlude/io/triangle_mesh.h"
 
@@ -183,6 +184,8 @@ class NarrowBandSdf {
   const PseudoNormals& pseudo_normals() const { return normals_; }
 
  private:
+  friend class SdfSampler;  // fast repeated lookups (sdf_sampler.h)
+
   /// A triangle's corners and bounding sphere, stored in spatial (Morton) order
   /// so that the triangles of neighbouring voxels are close in memory.
   struct PackedTriangle {
@@ -248,6 +251,31 @@ class NarrowBandSdf {
   };
   detail::BrickSet band_;                  ///< shifted keys; brick i <-> corner_bricks_[i]
   std::vector<CornerBrick> corner_bricks_;
+  /// Dense index of the corner bricks over their bounding box (brick
+  /// coordinates b - brick_lo_, x fastest), so that a lookup is one load
+  /// instead of a hash probe; empty when the box is too sparse to afford
+  /// (then band_'s hash serves). kNotFound = no brick.
+  std::vector<std::uint32_t> brick_table_;
+  Eigen::Vector3i brick_lo_ = Eigen::Vector3i::Zero();
+  Eigen::Vector3i brick_dims_ = Eigen::Vector3i::Zero();
+  void BuildBrickTable();
+  /// The corner brick at brick coordinates (bx, by, bz) (of shifted voxel
+  /// coordinates >> 2, each < 2^19), or null.
+  const CornerBrick* BrickAt(std::uint32_t bx, std::uint32_t by, std::uint32_t bz) const {
+    std::uint32_t i = detail::KeyIndexHash::kNotFound;
+    if (!brick_table_.empty()) {
+      const auto x = bx - static_cast<std::uint32_t>(brick_lo_.x());
+      const auto y = by - static_cast<std::uint32_t>(brick_lo_.y());
+      const auto z = bz - static_cast<std::uint32_t>(brick_lo_.z());
+      const auto nx = static_cast<std::uint32_t>(brick_dims_.x());
+      const auto ny = static_cast<std::uint32_t>(brick_dims_.y());
+      if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(brick_dims_.z())) return nullptr;
+      i = brick_table_[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
+    } else {
+      i = band_.BrickIndex(MortonEncode(static_cast<int>(bx), static_cast<int>(by), static_cast<int>(bz)));
+    }
+    return i == detail::KeyIndexHash::kNotFound ? nullptr : &corner_bricks_[i];
+  }
 };
 
 }  // namespace occlude::collision
