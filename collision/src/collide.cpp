@@ -14,6 +14,7 @@
 #include "occlude/collision/collide.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -24,6 +25,13 @@ namespace occlude::collision {
 namespace {
 
 constexpr double kPruneSlackMm = 1e-9;  // keeps rounding from pruning a valid pair
+
+// Bits set in a child mask (no popcnt instruction assumed).
+constexpr std::array<std::uint8_t, 256> kPopCount8 = [] {
+  std::array<std::uint8_t, 256> t{};
+  for (int m = 0; m < 256; ++m) t[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>((m & 1) + t[static_cast<std::size_t>(m >> 1)]);
+  return t;
+}();
 
 // One tree as seen from frame A during a query.
 constexpr int kMaxLevels = 24;  // Morton codes hold 21 bits per axis
@@ -512,6 +520,39 @@ class BoundCellTraversal {
   BoundCellTraversal(const Side& a, const Side& b, const CellRequest& req, CellResult* res)
       : a_(a), b_(b), req_(req), res_(res) {}
 
+  /// Explicit spheres: each node's stored centre goes straight into the
+  /// coordinates of A's bound (one affine map), and the stack holds only node
+  /// indices and levels. Same cells, in the same order, as Run<kExplicit>.
+  void RunExplicit(std::vector<std::pair<std::uint32_t, int>>* stack) {
+    const DistanceBound& bound = *a_.bound;
+    const double inv = 1.0 / bound.cell_mm();
+    const Eigen::Matrix3d A = b_.R * inv;
+    const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
+    const double grow = req_.reach_mm + kPruneSlackMm;
+    const ExplicitNode* ex = b_.ex;
+    auto far = [&](std::uint32_t n) {
+      ++res_->node_tests;
+      const ExplicitNode& e = ex[n];
+      return bound.ExcludesAt(A * Eigen::Vector3d(e.cx, e.cy, e.cz) + t, e.radius + grow);
+    };
+    stack->clear();
+    if (far(0)) return;
+    stack->push_back({0u, b_.oct->top_level});
+    const Octree& oct = *b_.oct;
+    while (!stack->empty()) {
+      const auto [node, level] = stack->back();
+      stack->pop_back();
+      if (level <= req_.cell_level) {
+        res_->cells_b.push_back(node);
+        continue;
+      }
+      const unsigned mask = oct.child_mask[node];
+      for (std::uint32_t child = oct.first_child[node] + kPopCount8[mask]; child-- > oct.first_child[node];) {
+        if (!far(child)) stack->push_back({child, level - 1});
+      }
+    }
+  }
+
   template <SphereMode kMode>
   void Run(std::vector<NodeRef>* stack) {
     using S = Spheres<kMode>;
@@ -530,7 +571,7 @@ class BoundCellTraversal {
       // cells come out in ascending node (Morton) order, which keeps the
       // caller's walk through per-cell data and the other tree's space forward.
       const unsigned mask = b_.oct->child_mask[n.node];
-      std::uint32_t child = b_.oct->first_child[n.node] + static_cast<std::uint32_t>(__builtin_popcount(mask));
+      std::uint32_t child = b_.oct->first_child[n.node] + kPopCount8[mask];
       for (unsigned m = mask; m != 0;) {
         const int slot = 31 - __builtin_clz(m);
         m &= ~(1u << slot);
@@ -651,6 +692,11 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
     // Only B's spheres matter here: B's explicit records when present.
     SphereMode mode = request.spheres;
     if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = SphereMode::kOptimized;
+    if (mode == SphereMode::kExplicit) {
+      thread_local std::vector<std::pair<std::uint32_t, int>> indices;
+      traversal.RunExplicit(&indices);
+      return;
+    }
     switch (mode) {
       case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&nodes); break;
       case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&nodes); break;

@@ -109,6 +109,7 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   out.origin_ = grid.origin_F;
   if (grid.surface_keys.empty() || !(grid.voxel_size_mm > 0.0)) return out;
   for (const int level : levels) out.levels_.push_back(BuildLevel(grid, max_voxels, level));
+  for (Level& level : out.levels_) level.scale = out.levels_[0].s * level.inv_s;
   return out;
 }
 
@@ -221,17 +222,25 @@ double DistanceBound::LowerBound(const Eigen::Vector3d& p_F) const {
 }
 
 bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
-  const Eigen::Vector3d p = p_F - origin_;
+  return !levels_.empty() && ExcludesAt((p_F - origin_) * levels_[0].inv_s, radius);
+}
+
+bool DistanceBound::ExcludesAt(const Eigen::Vector3d& q0, double radius) const {
+  constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
+  constexpr int m = kBrickEdge - 1;
   for (const Level& level : levels_) {
-    std::uint8_t value = 0;
-    Eigen::Vector3d offset;
-    if (!level.CellQ(p * level.inv_s, &value, &offset)) return false;
+    const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
+    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return false;  // also NaN
+    const int cx = FloorInt(qx), cy = FloorInt(qy), cz = FloorInt(qz);
+    const double ox = qx - cx - 0.5, oy = qy - cy - 0.5, oz = qz - cz - 0.5;
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
+    const std::uint8_t value =
+        i == detail::KeyIndexHash::kNotFound ? level.cap
+                                             : level.bricks[i][static_cast<std::size_t>(CellIndex(cx & m, cy & m, cz & m))];
     // m - |offset| s > radius without the square root: m - radius > 0 and
     // (m - radius)^2 > |offset|^2 s^2.
     const double margin = level.m_mm[value] - radius;
-    if (margin > 0.0 && margin * margin > offset.squaredNorm() * level.s2 * (1.0 + 1e-9)) {
-      return true;
-    }
+    if (margin > 0.0 && margin * margin > (ox * ox + oy * oy + oz * oz) * level.s2 * (1.0 + 1e-9)) return true;
     if (value < level.cap) return false;  // unsaturated: a coarser level is no tighter
   }
   return false;

@@ -62,6 +62,13 @@ class DistanceBound {
   /// p_F, i.e. a ball of that radius about p_F misses them all. Conservative:
   /// false whenever in doubt (empty bound, NaN, far outside the key range).
   bool Excludes(const Eigen::Vector3d& p_F, double radius) const;
+  /// The same for a point given as q0 = (p_F - origin()) / cell_mm(), its
+  /// coordinates in the finest level's cells (lets a caller fold the division
+  /// into its own transform).
+  bool ExcludesAt(const Eigen::Vector3d& q0, double radius) const;
+  const Eigen::Vector3d& origin() const { return origin_; }
+  /// The finest level's cell edge (the voxel size), mm; 0 when empty.
+  double cell_mm() const { return levels_.empty() ? 0.0 : levels_[0].s; }
 
   std::size_t num_bricks() const;
   std::size_t MemoryBytes() const;
@@ -72,6 +79,7 @@ class DistanceBound {
     double s = 0.0;  ///< cell edge, mm
     double inv_s = 0.0;
     double s2 = 0.0;  ///< s^2
+    double scale = 1.0;  ///< the finest level's cell edge / s
     double cap_mm = 0.0;
     std::uint8_t cap = 0;
     std::array<double, 256> m_mm{};  ///< Q -> m in mm, rounded down

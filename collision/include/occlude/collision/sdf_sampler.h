@@ -17,6 +17,10 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
 
@@ -42,34 +46,53 @@ class SdfSampler {
   };
   /// p_F in the field's voxel units. Points beyond the key range (or NaN)
   /// get a base that no lookup finds.
-  GridPoint GridPointOf(const Eigen::Vector3d& p_F) const {
-    const Eigen::Vector3d q = (p_F - sdf_->origin_) * sdf_->inv_s_;
+  GridPoint GridPointOf(const Eigen::Vector3d& p_F) const { return GridPointAt((p_F - sdf_->origin_) * sdf_->inv_s_); }
+  /// The same for q = (p_F - origin()) / voxel size, the field's voxel coordinates.
+  GridPoint GridPointAt(const Eigen::Vector3d& q) const {
     // Below kBias + 1 in float: q just below the next voxel stays in this one.
     constexpr float kTop = static_cast<float>(kBias + 1) - 0x1p-20f;
     GridPoint g;
     constexpr double kFar = 1 << 22;  // beyond every key, still an int
     for (int a = 0; a < 3; ++a) {
-      const double f = std::floor(q[a]);
-      if (!(std::abs(f) < kFar)) {  // also NaN
+      if (!(std::abs(q[a]) < kFar)) {  // also NaN
         g.base[a] = static_cast<int>(kFar);
         g.local[a] = static_cast<float>(kBias);
         continue;
       }
-      g.base[a] = static_cast<int>(f) + sdf_->shift_ - kBias;
+      int i = static_cast<int>(q[a]);  // floor without a libm call
+      i -= q[a] < static_cast<double>(i) ? 1 : 0;
+      const double f = static_cast<double>(i);
+      g.base[a] = i + sdf_->shift_ - kBias;
       g.local[a] = std::min(static_cast<float>(q[a] - f + kBias), kTop);
     }
     return g;
   }
 
+  /// The field's grid origin (frame F, mm) and inverse voxel size.
+  const Eigen::Vector3d& origin() const { return sdf_->origin_; }
+  double inv_voxel_size() const { return sdf_->inv_s_; }
+
   /// Corner values of the band voxel holding base + local, with the local
   /// coordinates in that voxel (*f); null outside the band. Precondition:
   /// every local coordinate in (0, 2^20).
   const float* Locate(const Eigen::Array4i& base, const Eigen::Array4f& local, Eigen::Array4f* f) {
+#if defined(__SSE2__)
+    // The same four lanes with SSE2 (every x86-64): Eigen's all() is scalar.
+    const __m128 p = _mm_load_ps(local.data());
+    const __m128i floor = _mm_cvttps_epi32(p);  // truncation: local > 0
+    _mm_store_ps(f->data(), _mm_sub_ps(p, _mm_cvtepi32_ps(floor)));
+    const __m128i key = _mm_add_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(base.data())), floor);
+    const __m128i last = _mm_load_si128(reinterpret_cast<const __m128i*>(voxel_key_.data()));
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(key, last)) == 0xffff) return voxel_;  // the previous point's voxel
+    _mm_store_si128(reinterpret_cast<__m128i*>(voxel_key_.data()), key);
+    const Eigen::Array4i& voxel = voxel_key_;
+#else
     const Eigen::Array4i floor = local.cast<int>();  // truncation: local > 0
     *f = local - floor.cast<float>();
     const Eigen::Array4i voxel = base + floor;
     if ((voxel == voxel_key_).all()) return voxel_;  // the previous point's voxel
     voxel_key_ = voxel;
+#endif
     voxel_ = nullptr;
     const auto ix = static_cast<std::uint32_t>(voxel[0]);
     const auto iy = static_cast<std::uint32_t>(voxel[1]);
