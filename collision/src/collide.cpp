@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "collide_exact.h"
+#include "occlude/collision/morton.h"
 #include "occlude/collision/sphere_table.h"
 
 namespace occlude::collision {
@@ -322,7 +323,90 @@ class Traversal {
     }
   }
 
+  /// The boolean with explicit spheres and A's voxel occupancy: B alone is
+  /// descended, nearest child first (by the bound's estimate), pruned by A's bound;
+  /// a B voxel that survives is tested against the A voxels its grown cube can
+  /// reach, read from the bound's finest level, with the exact cube test. Same
+  /// answer as Run's pair descent (every B voxel with a pair survives: the
+  /// bound is conservative), and the pair it reports is a pair.
+  void RunOneSidedExplicit(std::vector<std::pair<std::uint32_t, int>>* stack) {
+    const DistanceBound& bound = *a_.bound;
+    const double inv = 1.0 / bound.cell_mm();
+    const Eigen::Matrix3d A = b_.R * inv;
+    const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
+    const double limit = 2.0 * grow_sphere_ + kPruneSlackMm;
+    const ExplicitNode* ex = b_.ex;
+    // A node goes on when the bound cannot put its sphere beyond `limit` of
+    // A's voxels; the probe's gap estimate orders the survivors.
+    auto probe = [&](std::uint32_t n) {
+      ++res_->bound_tests;
+      const ExplicitNode& e = ex[n];
+      return bound.ProbeAt(A * Eigen::Vector3d(e.cx, e.cy, e.cz) + t, e.radius + limit);
+    };
+    stack->clear();
+    if (probe(0).excluded) return;
+    stack->push_back({0u, b_.oct->top_level});
+    const Octree& oct = *b_.oct;
+    while (!stack->empty()) {
+      const auto [node, level] = stack->back();
+      stack->pop_back();
+      if (level == 0) {
+        if (LeafAgainstOccupancy(node)) return;
+        continue;
+      }
+      // Children with their gaps, pushed farthest first (popped nearest first).
+      std::pair<double, std::uint32_t> found[8];
+      int num_found = 0;
+      const std::uint32_t first = oct.first_child[node];
+      for (std::uint32_t child = first + kPopCount8[oct.child_mask[node]]; child-- > first;) {
+        const DistanceBound::Probe p = probe(child);
+        if (p.excluded) continue;
+        const double g = p.gap_estimate;
+        int i = num_found++;
+        for (; i > 0 && found[i - 1].first < g; --i) found[i] = found[i - 1];  // descending gap
+        found[i] = {g, child};
+      }
+      for (int i = 0; i < num_found; ++i) stack->push_back({found[i].second, level - 1});
+    }
+  }
+
  private:
+  // The A voxels whose cubes, grown by delta / 2, can meet B voxel `leaf`'s
+  // grown cube (the A voxel indices its projections span), from A's bound's
+  // occupancy, each with the exact test; true (and the pair recorded) at the
+  // first that does.
+  bool LeafAgainstOccupancy(std::uint32_t leaf) {
+    const DistanceBound& bound = *a_.bound;
+    const VoxelGrid& grid = a_.tree->grid();
+    const Eigen::Vector3d cb = b_.VoxelCenterA(leaf);
+    const double g = 0.5 * req_.delta_mm, h = 0.5 * b_.s, inv = 1.0 / a_.s;
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const double e = h * b_.R.row(k).cwiseAbs().sum() + 2.0 * g + kPruneSlackMm;
+      const double q = (cb[k] - grid.origin_F[k]) * inv;
+      if (!(std::abs(q) < 1 << 22)) return false;  // far outside A's grid (also NaN)
+      lo[k] = static_cast<int>(std::floor(q - e * inv));
+      hi[k] = static_cast<int>(std::floor(q + e * inv));
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          if (!bound.VoxelOccupied(x, y, z)) continue;
+          ++res_->leaf_tests;
+          const Eigen::Vector3d ca = grid.origin_F + a_.s * (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5));
+          if (!cube_test_.Overlap(cb - ca)) continue;
+          const std::uint64_t key = MortonEncode(x, y, z);
+          const auto it = std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), key);
+          res_->overlap = true;
+          res_->pairs.push_back({static_cast<std::uint32_t>(it - grid.surface_keys.begin()),
+                                 leaf - b_.oct->leaf_begin()});
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   // Runs the pair descent on `stack`; false when it stopped early (the first
   // pair of a boolean query, or the work budget).
   template <SphereMode kMode>
@@ -649,7 +733,11 @@ void Collide(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& 
   SphereMode mode = request.spheres;
   if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = b.explicit_spheres().from;
   if (mode == SphereMode::kExplicit && a.explicit_spheres().empty()) mode = a.explicit_spheres().from;
-  if (request.first_only && request.distance_bound && side_a.bound != nullptr) {
+  if (request.first_only && request.distance_bound && side_a.bound != nullptr && mode == SphereMode::kExplicit &&
+      side_a.bound->has_voxel_occupancy() && request.max_node_tests == 0) {
+    thread_local std::vector<std::pair<std::uint32_t, int>> nodes;
+    traversal.RunOneSidedExplicit(&nodes);
+  } else if (request.first_only && request.distance_bound && side_a.bound != nullptr) {
     thread_local std::vector<NodeRef> nodes;
     const int pair_level = kOneSidedPairLevel;
     switch (mode) {

@@ -13,22 +13,12 @@
 namespace occlude::collision {
 namespace {
 
-constexpr int kBrickBits = 3;  // 8 cells per axis
-constexpr int kBrickEdge = 1 << kBrickBits;
-constexpr std::int64_t kKeyBias = std::int64_t{1} << 20;  // brick coordinates in [-2^20, 2^20)
+constexpr int kBrickBits = detail::kBoundBrickBits;
+constexpr int kBrickEdge = detail::kBoundBrickEdge;
 
-std::uint64_t BrickKey(const Eigen::Vector3i& b) {
-  return static_cast<std::uint64_t>(b.x() + kKeyBias) << 42 |
-         static_cast<std::uint64_t>(b.y() + kKeyBias) << 21 | static_cast<std::uint64_t>(b.z() + kKeyBias);
-}
-
-int CellIndex(int x, int y, int z) { return x | y << kBrickBits | z << (2 * kBrickBits); }
-
-/// floor(x) for |x| < 2^31 without a libm call.
-int FloorInt(double x) {
-  const int t = static_cast<int>(x);  // truncation towards zero
-  return t - (x < static_cast<double>(t) ? 1 : 0);
-}
+std::uint64_t BrickKey(const Eigen::Vector3i& b) { return detail::BoundBrickKey(b); }
+int CellIndex(int x, int y, int z) { return detail::BoundCellIndex(x, y, z); }
+int FloorInt(double x) { return detail::FloorInt(x); }
 
 // Bricks under construction: a hash from brick key to index, every new brick
 // filled with the cap. Indices stay valid as bricks are added (pointers do not).
@@ -109,7 +99,11 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   out.origin_ = grid.origin_F;
   if (grid.surface_keys.empty() || !(grid.voxel_size_mm > 0.0)) return out;
   for (const int level : levels) out.levels_.push_back(BuildLevel(grid, max_voxels, level));
-  for (Level& level : out.levels_) level.scale = out.levels_[0].s * level.inv_s;
+  out.finest_level_ = levels.empty() ? 0 : levels[0];
+  for (std::size_t l = 0; l < out.levels_.size(); ++l) {
+    out.levels_[l].shift = levels[l] - levels[0];
+    out.levels_[l].scale = std::ldexp(1.0, -out.levels_[l].shift);
+  }
   return out;
 }
 
@@ -182,15 +176,6 @@ void DistanceBound::Level::BuildTable(const std::vector<Eigen::Vector3i>& coords
   }
 }
 
-inline std::uint32_t DistanceBound::Level::BrickIndex(const Eigen::Vector3i& b) const {
-  if (table.empty()) return index.Find(BrickKey(b));
-  const auto x = static_cast<std::uint32_t>(b.x() - table_lo.x());
-  const auto y = static_cast<std::uint32_t>(b.y() - table_lo.y());
-  const auto z = static_cast<std::uint32_t>(b.z() - table_lo.z());
-  const auto nx = static_cast<std::uint32_t>(table_dims.x()), ny = static_cast<std::uint32_t>(table_dims.y());
-  if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(table_dims.z())) return detail::KeyIndexHash::kNotFound;
-  return table[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
-}
 
 bool DistanceBound::Level::CellQ(const Eigen::Vector3d& q, std::uint8_t* value,
                                  Eigen::Vector3d* offset) const {
@@ -209,42 +194,35 @@ bool DistanceBound::Level::CellQ(const Eigen::Vector3d& q, std::uint8_t* value,
 }
 
 double DistanceBound::LowerBound(const Eigen::Vector3d& p_F) const {
+  if (levels_.empty()) return -std::numeric_limits<double>::infinity();
+  return LowerBoundAt((p_F - origin_) * levels_[0].inv_s);
+}
+
+double DistanceBound::LowerBoundAt(const Eigen::Vector3d& q0) const {
   double best = -std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d p = p_F - origin_;
   for (const Level& level : levels_) {
     std::uint8_t value = 0;
     Eigen::Vector3d offset;
-    if (!level.CellQ(p * level.inv_s, &value, &offset)) return best;
+    if (!level.CellQ(q0 * level.scale, &value, &offset)) return best;
     best = std::max(best, level.m_mm[value] - level.s * offset.norm() * (1.0 + 1e-12));
     if (value < level.cap) break;  // unsaturated: a coarser level is no tighter
   }
   return best;
 }
 
+bool DistanceBound::VoxelOccupied(int x, int y, int z) const {
+  if (levels_.empty()) return false;
+  const Level& level = levels_[0];
+  const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(x >> kBrickBits, y >> kBrickBits, z >> kBrickBits));
+  constexpr int m = kBrickEdge - 1;
+  return i != detail::KeyIndexHash::kNotFound &&
+         level.bricks[i][static_cast<std::size_t>(CellIndex(x & m, y & m, z & m))] == 0;
+}
+
 bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
   return !levels_.empty() && ExcludesAt((p_F - origin_) * levels_[0].inv_s, radius);
 }
 
-bool DistanceBound::ExcludesAt(const Eigen::Vector3d& q0, double radius) const {
-  constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
-  constexpr int m = kBrickEdge - 1;
-  for (const Level& level : levels_) {
-    const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
-    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return false;  // also NaN
-    const int cx = FloorInt(qx), cy = FloorInt(qy), cz = FloorInt(qz);
-    const double ox = qx - cx - 0.5, oy = qy - cy - 0.5, oz = qz - cz - 0.5;
-    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
-    const std::uint8_t value =
-        i == detail::KeyIndexHash::kNotFound ? level.cap
-                                             : level.bricks[i][static_cast<std::size_t>(CellIndex(cx & m, cy & m, cz & m))];
-    // m - |offset| s > radius without the square root: m - radius > 0 and
-    // (m - radius)^2 > |offset|^2 s^2.
-    const double margin = level.m_mm[value] - radius;
-    if (margin > 0.0 && margin * margin > (ox * ox + oy * oy + oz * oz) * level.s2 * (1.0 + 1e-9)) return true;
-    if (value < level.cap) return false;  // unsaturated: a coarser level is no tighter
-  }
-  return false;
-}
 
 std::size_t DistanceBound::num_bricks() const {
   std::size_t n = 0;
