@@ -219,6 +219,10 @@ bool DistanceBound::VoxelOccupied(int x, int y, int z) const {
          level.bricks[i][static_cast<std::size_t>(CellIndex(x & m, y & m, z & m))] == 0;
 }
 
+bool DistanceBound::ExcludesAt(const Eigen::Vector3d& q0, double radius) const {
+  return Probe3<false>(q0, radius).excluded;
+}
+
 bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
   return !levels_.empty() && ExcludesAt((p_F - origin_) * levels_[0].inv_s, radius);
 }

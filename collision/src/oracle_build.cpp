@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "occlude/collision/morton.h"
 #include "occlude/collision/oracle.h"
@@ -137,8 +139,26 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   const auto start = std::chrono::steady_clock::now();
   SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = options.voxel_size_mm;
-  lower_ = SphereTree::Build(lower_L, tree_options);
-  upper_ = SphereTree::Build(upper_U, tree_options);
+  {
+    // The two trees are independent: the upper's on a second thread (a build
+    // may use two), an exception there rethrown here.
+    std::exception_ptr upper_error;
+    std::thread upper_thread([&] {
+      try {
+        upper_ = SphereTree::Build(upper_U, tree_options);
+      } catch (...) {
+        upper_error = std::current_exception();
+      }
+    });
+    try {
+      lower_ = SphereTree::Build(lower_L, tree_options);
+    } catch (...) {
+      upper_thread.join();
+      throw;
+    }
+    upper_thread.join();
+    if (upper_error) std::rethrow_exception(upper_error);
+  }
   NarrowBandOptions sdf_options;
   sdf_options.dilation_voxels = options.sdf_dilation_voxels;
   sdf_ = NarrowBandSdf::Build(lower_L, lower_.grid(), sdf_options);

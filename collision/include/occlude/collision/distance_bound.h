@@ -84,7 +84,7 @@ class DistanceBound {
   /// The same for a point given as q0 = (p_F - origin()) / cell_mm(), its
   /// coordinates in the finest level's cells (lets a caller fold the division
   /// into its own transform).
-  bool ExcludesAt(const Eigen::Vector3d& q0, double radius) const { return ProbeAt(q0, radius).excluded; }
+  bool ExcludesAt(const Eigen::Vector3d& q0, double radius) const;
   /// ExcludesAt and, when not excluded, the ball's gap to the surface voxels
   /// as LowerBound sees it at the last level read (for ordering), from the
   /// same lookups.
@@ -92,7 +92,7 @@ class DistanceBound {
     bool excluded = false;
     double gap_estimate = 0.0;  ///< mm (lower bound of the centre's distance minus the radius)
   };
-  Probe ProbeAt(const Eigen::Vector3d& q0, double radius) const;
+  Probe ProbeAt(const Eigen::Vector3d& q0, double radius) const { return Probe3<true>(q0, radius); }
   /// LowerBound for a point given in finest-level cell coordinates (as ExcludesAt).
   double LowerBoundAt(const Eigen::Vector3d& q0) const;
   /// True when voxel (x, y, z) of the grid is a surface voxel (its value is
@@ -108,6 +108,8 @@ class DistanceBound {
   std::size_t MemoryBytes() const;
 
  private:
+  template <bool kEstimate>
+  Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
   using Brick = std::array<std::uint8_t, 512>;  ///< cell x + 8 y + 64 z
   struct Level {
     double s = 0.0;  ///< cell edge, mm
@@ -148,21 +150,19 @@ class DistanceBound {
   int finest_level_ = 0;       ///< octree level of levels_[0]
 };
 
-inline DistanceBound::Probe DistanceBound::ProbeAt(const Eigen::Vector3d& q0, double radius) const {
+template <bool kEstimate>
+inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, double radius) const {
   Probe probe;
   constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
   constexpr int m = detail::kBoundBrickEdge - 1;
-  if (!(std::abs(q0.x()) < kRange && std::abs(q0.y()) < kRange && std::abs(q0.z()) < kRange)) return probe;  // also NaN
-  // Cells of a coarser level (edge 2^k finer cells) hold floor(q0) >> k.
-  const int fx = detail::FloorInt(q0.x()), fy = detail::FloorInt(q0.y()), fz = detail::FloorInt(q0.z());
   // Finest level first, as LowerBound: the estimate (the largest bound over
   // the levels read) then orders a descent as well as LowerBound does.
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
-    const int k = level.shift;
-    const int cx = fx >> k, cy = fy >> k, cz = fz >> k;
-    const double ox = q0.x() * level.scale - cx - 0.5, oy = q0.y() * level.scale - cy - 0.5,
-                 oz = q0.z() * level.scale - cz - 0.5;
+    const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
+    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return probe;  // also NaN
+    const int cx = detail::FloorInt(qx), cy = detail::FloorInt(qy), cz = detail::FloorInt(qz);
+    const double ox = qx - cx - 0.5, oy = qy - cy - 0.5, oz = qz - cz - 0.5;
     const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits, cz >> detail::kBoundBrickBits));
     const std::uint8_t value =
         i == detail::KeyIndexHash::kNotFound ? level.cap
@@ -175,8 +175,10 @@ inline DistanceBound::Probe DistanceBound::ProbeAt(const Eigen::Vector3d& q0, do
       probe.excluded = true;
       return probe;
     }
-    const double gap = margin - level.s * std::sqrt(o2);
-    probe.gap_estimate = l == 0 ? gap : std::max(probe.gap_estimate, gap);
+    if constexpr (kEstimate) {
+      const double gap = margin - level.s * std::sqrt(o2);
+      probe.gap_estimate = l == 0 ? gap : std::max(probe.gap_estimate, gap);
+    }
     if (value < level.cap) return probe;  // unsaturated: a coarser level is no tighter
   }
   return probe;

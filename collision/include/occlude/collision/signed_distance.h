@@ -106,6 +106,26 @@ class BrickSet {
   void Finish();
   /// Index of brick `brick_key` in bricks() (after Finish), or KeyIndexHash::kNotFound.
   std::uint32_t BrickIndex(std::uint64_t brick_key) const { return index_.Find(brick_key); }
+  /// The same for the brick at brick coordinates (x, y, z): one load from a
+  /// dense index over the bricks' bounding box when Finish could afford one
+  /// (4 bytes per box cell, at most 32 cells per brick), else the hash.
+  /// Coordinates out of the box (or of the key range) find nothing.
+  std::uint32_t BrickIndexAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    if (dense_.empty()) {
+      constexpr std::uint32_t kLimit = 1u << 19;  // brick coordinates of 21-bit voxel keys
+      if (x >= kLimit || y >= kLimit || z >= kLimit) return KeyIndexHash::kNotFound;
+      return index_.Find(MortonEncode(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)));
+    }
+    x -= dense_lo_[0];
+    y -= dense_lo_[1];
+    z -= dense_lo_[2];
+    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return KeyIndexHash::kNotFound;
+    return dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
+  }
+  const Brick* FindAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    const std::uint32_t i = BrickIndexAt(x, y, z);
+    return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
+  }
   const Brick* Find(std::uint64_t brick_key) const {
     const std::uint32_t i = index_.Find(brick_key);
     return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
@@ -120,7 +140,7 @@ class BrickSet {
   const std::vector<Brick>& bricks() const { return bricks_; }
   std::size_t num_voxels() const { return voxels_; }
   std::size_t MemoryBytes() const {
-    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes();
+    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes() + dense_.capacity() * sizeof(std::uint32_t);
   }
   static std::uint32_t PopCount(std::uint64_t x) {
     x -= (x >> 1) & 0x5555555555555555ULL;
@@ -131,9 +151,13 @@ class BrickSet {
 
  private:
   Brick& At(std::uint64_t brick_key);
+  void BuildDense();
   std::vector<Brick> bricks_;
   KeyIndexHash index_;
   std::size_t voxels_ = 0;
+  std::vector<std::uint32_t> dense_;  ///< brick index per box cell (x fastest), or kNotFound
+  std::uint32_t dense_lo_[3] = {0, 0, 0};
+  std::uint32_t dense_dims_[3] = {0, 0, 0};
 };
 
 }  // namespace detail
@@ -209,6 +233,13 @@ class NarrowBandSdf {
   void PackTriangles();
   detail::BrickSet BandVoxels(const VoxelGrid& grid, int dilation) const;
   std::vector<float> CornerValues(const detail::BrickSet& corners) const;
+  struct CornerScratch;  ///< per-thread buffers of CornerValues (signed_distance_corners.cpp)
+  /// The exact signed distances at the corners of brick `bi` of `corners`
+  /// (into value[rank]), from one candidate list of triangles for the brick.
+  void BrickCornerValues(const detail::BrickSet& corners, std::size_t bi, CornerScratch* scratch,
+                         std::vector<float>* value) const;
+  void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p, Nearest* best,
+                      bool* found) const;
   void FillBlocks(const detail::BrickSet& band);
   /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
   /// index or kNoHint) seeds the search. False when none is within.
@@ -251,29 +282,10 @@ class NarrowBandSdf {
   };
   detail::BrickSet band_;                  ///< shifted keys; brick i <-> corner_bricks_[i]
   std::vector<CornerBrick> corner_bricks_;
-  /// Dense index of the corner bricks over their bounding box (brick
-  /// coordinates b - brick_lo_, x fastest), so that a lookup is one load
-  /// instead of a hash probe; empty when the box is too sparse to afford
-  /// (then band_'s hash serves). kNotFound = no brick.
-  std::vector<std::uint32_t> brick_table_;
-  Eigen::Vector3i brick_lo_ = Eigen::Vector3i::Zero();
-  Eigen::Vector3i brick_dims_ = Eigen::Vector3i::Zero();
-  void BuildBrickTable();
   /// The corner brick at brick coordinates (bx, by, bz) (of shifted voxel
   /// coordinates >> 2, each < 2^19), or null.
   const CornerBrick* BrickAt(std::uint32_t bx, std::uint32_t by, std::uint32_t bz) const {
-    std::uint32_t i = detail::KeyIndexHash::kNotFound;
-    if (!brick_table_.empty()) {
-      const auto x = bx - static_cast<std::uint32_t>(brick_lo_.x());
-      const auto y = by - static_cast<std::uint32_t>(brick_lo_.y());
-      const auto z = bz - static_cast<std::uint32_t>(brick_lo_.z());
-      const auto nx = static_cast<std::uint32_t>(brick_dims_.x());
-      const auto ny = static_cast<std::uint32_t>(brick_dims_.y());
-      if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(brick_dims_.z())) return nullptr;
-      i = brick_table_[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
-    } else {
-      i = band_.BrickIndex(MortonEncode(static_cast<int>(bx), static_cast<int>(by), static_cast<int>(bz)));
-    }
+    const std::uint32_t i = band_.BrickIndexAt(bx, by, bz);
     return i == detail::KeyIndexHash::kNotFound ? nullptr : &corner_bricks_[i];
   }
 };
