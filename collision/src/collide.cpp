@@ -335,13 +335,12 @@ class Traversal {
     const Eigen::Matrix3d A = b_.R * inv;
     const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
     const double limit = 2.0 * grow_sphere_ + kPruneSlackMm;
-    const ExplicitNode* ex = b_.ex;
+    const Eigen::Vector4f* sph = b_.tree->explicit_spheres().compact.data();
     // A node goes on when the bound cannot put its sphere beyond `limit` of
     // A's voxels; the probe's gap estimate orders the survivors.
     auto probe = [&](std::uint32_t n) {
       ++res_->bound_tests;
-      const ExplicitNode& e = ex[n];
-      return bound.ProbeAt(A * Eigen::Vector3d(e.cx, e.cy, e.cz) + t, e.radius + limit);
+      return bound.ProbeAt(A * sph[n].head<3>().cast<double>() + t, static_cast<double>(sph[n].w()) + limit);
     };
     stack->clear();
     if (probe(0).excluded) return;
@@ -613,11 +612,11 @@ class BoundCellTraversal {
     const Eigen::Matrix3d A = b_.R * inv;
     const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
     const double grow = req_.reach_mm + kPruneSlackMm;
-    const ExplicitNode* ex = b_.ex;
+    const Eigen::Vector4f* sph = b_.tree->explicit_spheres().compact.data();
+    auto centre = [&](std::uint32_t n) { return Eigen::Vector3d(A * sph[n].head<3>().cast<double>() + t); };
     auto far = [&](std::uint32_t n) {
       ++res_->node_tests;
-      const ExplicitNode& e = ex[n];
-      return bound.ExcludesAt(A * Eigen::Vector3d(e.cx, e.cy, e.cz) + t, e.radius + grow);
+      return bound.ExcludesAt(centre(n), static_cast<double>(sph[n].w()) + grow);
     };
     stack->clear();
     if (far(0)) return;
@@ -630,9 +629,19 @@ class BoundCellTraversal {
         res_->cells_b.push_back(node);
         continue;
       }
-      const unsigned mask = oct.child_mask[node];
-      for (std::uint32_t child = oct.first_child[node] + kPopCount8[mask]; child-- > oct.first_child[node];) {
-        if (!far(child)) stack->push_back({child, level - 1});
+      // All children's bound cells first (their cache misses overlap), then
+      // the tests, last child first so that they pop in order.
+      const std::uint32_t first = oct.first_child[node];
+      const int count = kPopCount8[oct.child_mask[node]];
+      Eigen::Vector3d q[8];
+      for (int k = 0; k < count; ++k) {
+        q[k] = centre(first + static_cast<std::uint32_t>(k));
+        bound.Prefetch(q[k]);
+      }
+      for (int k = count; k-- > 0;) {
+        ++res_->node_tests;
+        const std::uint32_t child = first + static_cast<std::uint32_t>(k);
+        if (!bound.ExcludesAt(q[k], static_cast<double>(sph[child].w()) + grow)) stack->push_back({child, level - 1});
       }
     }
   }

@@ -67,7 +67,8 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
   // Each cell is tested at the centre c of its samples' bounding box, r being
-  // their largest distance from c (QueryContext::Irrelevant). Unknown samples
+  // their largest distance from c (QueryContext::Irrelevant; outside the band
+  // the lower's distance bound stands in for the field). Unknown samples
   // (outside the band) are on the centre's side when the centre is unknown
   // too and r < band (a segment shorter than the band from a point beyond it
   // does not reach the surface), and outside when the centre is known and
@@ -92,7 +93,15 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
       if (request.cull && q.Irrelevant(q.cell_d, r)) continue;
       q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior : UnknownSide::kMaybeInterior;
     } else if (r < q.band_mm) {
-      q.unknown_side = IsInterior(lower_grid, X_LU * c_U) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
+      const Eigen::Vector3d c_L = X_LU * c_U;
+      q.unknown_side = IsInterior(lower_grid, c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
+      // Outside, the lower's voxel cubes (which hold its surface) are at least
+      // LowerBound away from c, so a sample within r has D >= that - r and its
+      // interpolated value (within interp_error of D) is above the outer band.
+      if (request.cull && q.unknown_side == UnknownSide::kExterior &&
+          lower_.distance_bound().LowerBound(c_L) - r - q.interp_error > q.outer + QueryContext::kSlackMm) {
+        continue;
+      }
     } else {
       q.unknown_side = UnknownSide::kMaybeInterior;
     }

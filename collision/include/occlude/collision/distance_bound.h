@@ -100,6 +100,22 @@ class DistanceBound {
   bool VoxelOccupied(int x, int y, int z) const;
   /// The finest level is the voxels themselves (level 0), so VoxelOccupied works.
   bool has_voxel_occupancy() const { return !levels_.empty() && finest_level_ == 0; }
+  /// Asks the memory system for the finest-level byte ExcludesAt(q0) reads
+  /// first (a descent calls it for all children before testing them, so that
+  /// their cache misses overlap). No effect on any answer.
+  void Prefetch(const Eigen::Vector3d& q0) const {
+    if (levels_.empty() || !(std::abs(q0.x()) < (1 << 22) && std::abs(q0.y()) < (1 << 22) && std::abs(q0.z()) < (1 << 22))) {
+      return;
+    }
+    const Level& level = levels_[0];
+    const int cx = detail::FloorInt(q0.x()), cy = detail::FloorInt(q0.y()), cz = detail::FloorInt(q0.z());
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits,
+                                                             cz >> detail::kBoundBrickBits));
+    constexpr int m = detail::kBoundBrickEdge - 1;
+    if (i != detail::KeyIndexHash::kNotFound) {
+      __builtin_prefetch(&level.bricks[i][static_cast<std::size_t>(detail::BoundCellIndex(cx & m, cy & m, cz & m))]);
+    }
+  }
   const Eigen::Vector3d& origin() const { return origin_; }
   /// The finest level's cell edge (the voxel size), mm; 0 when empty.
   double cell_mm() const { return levels_.empty() ? 0.0 : levels_[0].s; }
