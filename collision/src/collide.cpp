@@ -14,16 +14,25 @@
 #include "occlude/collision/collide.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
 #include "collide_exact.h"
+#include "occlude/collision/morton.h"
 #include "occlude/collision/sphere_table.h"
 
 namespace occlude::collision {
 namespace {
 
 constexpr double kPruneSlackMm = 1e-9;  // keeps rounding from pruning a valid pair
+
+// Bits set in a child mask (no popcnt instruction assumed).
+constexpr std::array<std::uint8_t, 256> kPopCount8 = [] {
+  std::array<std::uint8_t, 256> t{};
+  for (int m = 0; m < 256; ++m) t[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>((m & 1) + t[static_cast<std::size_t>(m >> 1)]);
+  return t;
+}();
 
 // One tree as seen from frame A during a query.
 constexpr int kMaxLevels = 24;  // Morton codes hold 21 bits per axis
@@ -314,7 +323,89 @@ class Traversal {
     }
   }
 
+  /// The boolean with explicit spheres and A's voxel occupancy: B alone is
+  /// descended, nearest child first (by the bound's estimate), pruned by A's bound;
+  /// a B voxel that survives is tested against the A voxels its grown cube can
+  /// reach, read from the bound's finest level, with the exact cube test. Same
+  /// answer as Run's pair descent (every B voxel with a pair survives: the
+  /// bound is conservative), and the pair it reports is a pair.
+  void RunOneSidedExplicit(std::vector<std::pair<std::uint32_t, int>>* stack) {
+    const DistanceBound& bound = *a_.bound;
+    const double inv = 1.0 / bound.cell_mm();
+    const Eigen::Matrix3d A = b_.R * inv;
+    const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
+    const double limit = 2.0 * grow_sphere_ + kPruneSlackMm;
+    const Eigen::Vector4f* sph = b_.tree->explicit_spheres().compact.data();
+    // A node goes on when the bound cannot put its sphere beyond `limit` of
+    // A's voxels; the probe's gap estimate orders the survivors.
+    auto probe = [&](std::uint32_t n) {
+      ++res_->bound_tests;
+      return bound.ProbeAt(A * sph[n].head<3>().cast<double>() + t, static_cast<double>(sph[n].w()) + limit);
+    };
+    stack->clear();
+    if (probe(0).excluded) return;
+    stack->push_back({0u, b_.oct->top_level});
+    const Octree& oct = *b_.oct;
+    while (!stack->empty()) {
+      const auto [node, level] = stack->back();
+      stack->pop_back();
+      if (level == 0) {
+        if (LeafAgainstOccupancy(node)) return;
+        continue;
+      }
+      // Children with their gaps, pushed farthest first (popped nearest first).
+      std::pair<double, std::uint32_t> found[8];
+      int num_found = 0;
+      const std::uint32_t first = oct.first_child[node];
+      for (std::uint32_t child = first + kPopCount8[oct.child_mask[node]]; child-- > first;) {
+        const DistanceBound::Probe p = probe(child);
+        if (p.excluded) continue;
+        const double g = p.gap_estimate;
+        int i = num_found++;
+        for (; i > 0 && found[i - 1].first < g; --i) found[i] = found[i - 1];  // descending gap
+        found[i] = {g, child};
+      }
+      for (int i = 0; i < num_found; ++i) stack->push_back({found[i].second, level - 1});
+    }
+  }
+
  private:
+  // The A voxels whose cubes, grown by delta / 2, can meet B voxel `leaf`'s
+  // grown cube (the A voxel indices its projections span), from A's bound's
+  // occupancy, each with the exact test; true (and the pair recorded) at the
+  // first that does.
+  bool LeafAgainstOccupancy(std::uint32_t leaf) {
+    const DistanceBound& bound = *a_.bound;
+    const VoxelGrid& grid = a_.tree->grid();
+    const Eigen::Vector3d cb = b_.VoxelCenterA(leaf);
+    const double g = 0.5 * req_.delta_mm, h = 0.5 * b_.s, inv = 1.0 / a_.s;
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const double e = h * b_.R.row(k).cwiseAbs().sum() + 2.0 * g + kPruneSlackMm;
+      const double q = (cb[k] - grid.origin_F[k]) * inv;
+      if (!(std::abs(q) < 1 << 22)) return false;  // far outside A's grid (also NaN)
+      lo[k] = static_cast<int>(std::floor(q - e * inv));
+      hi[k] = static_cast<int>(std::floor(q + e * inv));
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          if (!bound.VoxelOccupied(x, y, z)) continue;
+          ++res_->leaf_tests;
+          const Eigen::Vector3d ca = grid.origin_F + a_.s * (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5));
+          if (!cube_test_.Overlap(cb - ca)) continue;
+          const std::uint64_t key = MortonEncode(x, y, z);
+          const auto it = std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), key);
+          res_->overlap = true;
+          res_->pairs.push_back({static_cast<std::uint32_t>(it - grid.surface_keys.begin()),
+                                 leaf - b_.oct->leaf_begin()});
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   // Runs the pair descent on `stack`; false when it stopped early (the first
   // pair of a boolean query, or the work budget).
   template <SphereMode kMode>
@@ -512,6 +603,49 @@ class BoundCellTraversal {
   BoundCellTraversal(const Side& a, const Side& b, const CellRequest& req, CellResult* res)
       : a_(a), b_(b), req_(req), res_(res) {}
 
+  /// Explicit spheres: each node's stored centre goes straight into the
+  /// coordinates of A's bound (one affine map), and the stack holds only node
+  /// indices and levels. Same cells, in the same order, as Run<kExplicit>.
+  void RunExplicit(std::vector<std::pair<std::uint32_t, int>>* stack) {
+    const DistanceBound& bound = *a_.bound;
+    const double inv = 1.0 / bound.cell_mm();
+    const Eigen::Matrix3d A = b_.R * inv;
+    const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
+    const double grow = req_.reach_mm + kPruneSlackMm;
+    const Eigen::Vector4f* sph = b_.tree->explicit_spheres().compact.data();
+    auto centre = [&](std::uint32_t n) { return Eigen::Vector3d(A * sph[n].head<3>().cast<double>() + t); };
+    auto far = [&](std::uint32_t n) {
+      ++res_->node_tests;
+      return bound.ExcludesAt(centre(n), static_cast<double>(sph[n].w()) + grow);
+    };
+    stack->clear();
+    if (far(0)) return;
+    stack->push_back({0u, b_.oct->top_level});
+    const Octree& oct = *b_.oct;
+    while (!stack->empty()) {
+      const auto [node, level] = stack->back();
+      stack->pop_back();
+      if (level <= req_.cell_level) {
+        res_->cells_b.push_back(node);
+        continue;
+      }
+      // All children's bound cells first (their cache misses overlap), then
+      // the tests, last child first so that they pop in order.
+      const std::uint32_t first = oct.first_child[node];
+      const int count = kPopCount8[oct.child_mask[node]];
+      Eigen::Vector3d q[8];
+      for (int k = 0; k < count; ++k) {
+        q[k] = centre(first + static_cast<std::uint32_t>(k));
+        bound.Prefetch(q[k]);
+      }
+      for (int k = count; k-- > 0;) {
+        ++res_->node_tests;
+        const std::uint32_t child = first + static_cast<std::uint32_t>(k);
+        if (!bound.ExcludesAt(q[k], static_cast<double>(sph[child].w()) + grow)) stack->push_back({child, level - 1});
+      }
+    }
+  }
+
   template <SphereMode kMode>
   void Run(std::vector<NodeRef>* stack) {
     using S = Spheres<kMode>;
@@ -526,9 +660,15 @@ class BoundCellTraversal {
         res_->cells_b.push_back(n.node);
         continue;
       }
-      std::uint32_t child = b_.oct->first_child[n.node];
-      for (unsigned mask = b_.oct->child_mask[n.node]; mask != 0; mask &= mask - 1, ++child) {
-        const NodeRef c = S::Child(b_, n, child, __builtin_ctz(mask));
+      // Children pushed last slot first, so that they pop in slot order: the
+      // cells come out in ascending node (Morton) order, which keeps the
+      // caller's walk through per-cell data and the other tree's space forward.
+      const unsigned mask = b_.oct->child_mask[n.node];
+      std::uint32_t child = b_.oct->first_child[n.node] + kPopCount8[mask];
+      for (unsigned m = mask; m != 0;) {
+        const int slot = 31 - __builtin_clz(m);
+        m &= ~(1u << slot);
+        const NodeRef c = S::Child(b_, n, --child, slot);
         if (!Far<kMode>(c)) stack->push_back(c);
       }
     }
@@ -602,7 +742,11 @@ void Collide(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& 
   SphereMode mode = request.spheres;
   if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = b.explicit_spheres().from;
   if (mode == SphereMode::kExplicit && a.explicit_spheres().empty()) mode = a.explicit_spheres().from;
-  if (request.first_only && request.distance_bound && side_a.bound != nullptr) {
+  if (request.first_only && request.distance_bound && side_a.bound != nullptr && mode == SphereMode::kExplicit &&
+      side_a.bound->has_voxel_occupancy() && request.max_node_tests == 0) {
+    thread_local std::vector<std::pair<std::uint32_t, int>> nodes;
+    traversal.RunOneSidedExplicit(&nodes);
+  } else if (request.first_only && request.distance_bound && side_a.bound != nullptr) {
     thread_local std::vector<NodeRef> nodes;
     const int pair_level = kOneSidedPairLevel;
     switch (mode) {
@@ -645,6 +789,11 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
     // Only B's spheres matter here: B's explicit records when present.
     SphereMode mode = request.spheres;
     if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = SphereMode::kOptimized;
+    if (mode == SphereMode::kExplicit) {
+      thread_local std::vector<std::pair<std::uint32_t, int>> indices;
+      traversal.RunExplicit(&indices);
+      return;
+    }
     switch (mode) {
       case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&nodes); break;
       case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&nodes); break;

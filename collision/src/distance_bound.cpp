@@ -13,16 +13,12 @@
 namespace occlude::collision {
 namespace {
 
-constexpr int kBrickBits = 3;  // 8 cells per axis
-constexpr int kBrickEdge = 1 << kBrickBits;
-constexpr std::int64_t kKeyBias = std::int64_t{1} << 20;  // brick coordinates in [-2^20, 2^20)
+constexpr int kBrickBits = detail::kBoundBrickBits;
+constexpr int kBrickEdge = detail::kBoundBrickEdge;
 
-std::uint64_t BrickKey(const Eigen::Vector3i& b) {
-  return static_cast<std::uint64_t>(b.x() + kKeyBias) << 42 |
-         static_cast<std::uint64_t>(b.y() + kKeyBias) << 21 | static_cast<std::uint64_t>(b.z() + kKeyBias);
-}
-
-int CellIndex(int x, int y, int z) { return x | y << kBrickBits | z << (2 * kBrickBits); }
+std::uint64_t BrickKey(const Eigen::Vector3i& b) { return detail::BoundBrickKey(b); }
+int CellIndex(int x, int y, int z) { return detail::BoundCellIndex(x, y, z); }
+int FloorInt(double x) { return detail::FloorInt(x); }
 
 // Bricks under construction: a hash from brick key to index, every new brick
 // filled with the cap. Indices stay valid as bricks are added (pointers do not).
@@ -103,6 +99,11 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   out.origin_ = grid.origin_F;
   if (grid.surface_keys.empty() || !(grid.voxel_size_mm > 0.0)) return out;
   for (const int level : levels) out.levels_.push_back(BuildLevel(grid, max_voxels, level));
+  out.finest_level_ = levels.empty() ? 0 : levels[0];
+  for (std::size_t l = 0; l < out.levels_.size(); ++l) {
+    out.levels_[l].shift = levels[l] - levels[0];
+    out.levels_[l].scale = std::ldexp(1.0, -out.levels_[l].shift);
+  }
   return out;
 }
 
@@ -110,6 +111,7 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
   Level out;
   out.s = std::ldexp(grid.voxel_size_mm, level);
   out.inv_s = 1.0 / out.s;
+  out.s2 = out.s * out.s;
   out.cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
   // Rounded down so that the bound never exceeds the exact distance.
   for (int q = 0; q < 256; ++q) {
@@ -133,6 +135,7 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
   BrickMap field = Pass(Pass(Pass(occupied, 0, t), 1, t), 2, t);
   // Keep the bricks holding some value below the cap (others read as the cap anyway).
   out.index.Reset(field.bricks.size());
+  std::vector<Eigen::Vector3i> kept;
   for (std::size_t i = 0; i < field.bricks.size(); ++i) {
     bool useful = false;
     for (const std::uint8_t v : field.bricks[i]) useful = useful || v < out.cap;
@@ -140,56 +143,90 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
     bool inserted = false;
     out.index.Insert(BrickKey(field.coords[i]), static_cast<std::uint32_t>(out.bricks.size()), &inserted);
     out.bricks.push_back(field.bricks[i]);
+    kept.push_back(field.coords[i]);
   }
   out.bricks.shrink_to_fit();
+  out.BuildTable(kept);
   return out;
 }
+
+void DistanceBound::Level::BuildTable(const std::vector<Eigen::Vector3i>& coords) {
+  table.clear();
+  if (coords.empty()) return;
+  Eigen::Vector3i lo = coords[0], hi = coords[0];
+  for (const auto& c : coords) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                            static_cast<std::size_t>(dims.z());
+  // 4 bytes per box cell against 512 per brick: affordable up to 32 cells per brick.
+  constexpr std::size_t kMaxCellsPerBrick = 32;
+  if (cells > kMaxCellsPerBrick * coords.size() + (std::size_t{1} << 16)) return;
+  table_lo = lo;
+  table_dims = dims;
+  table.assign(cells, detail::KeyIndexHash::kNotFound);
+  for (std::size_t i = 0; i < coords.size(); ++i) {
+    const Eigen::Vector3i c = coords[i] - lo;
+    table[static_cast<std::size_t>(c.x()) +
+          static_cast<std::size_t>(dims.x()) *
+              (static_cast<std::size_t>(c.y()) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(c.z()))] =
+        static_cast<std::uint32_t>(i);
+  }
+}
+
 
 bool DistanceBound::Level::CellQ(const Eigen::Vector3d& q, std::uint8_t* value,
                                  Eigen::Vector3d* offset) const {
   constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
-  if (!(q.cwiseAbs().maxCoeff() < kRange)) return false;  // also NaN
-  const Eigen::Vector3d f(std::floor(q.x()), std::floor(q.y()), std::floor(q.z()));
-  const Eigen::Vector3i c = f.cast<int>();
-  *offset = q - f - Eigen::Vector3d::Constant(0.5);
-  const Eigen::Vector3i b(c.x() >> kBrickBits, c.y() >> kBrickBits, c.z() >> kBrickBits);
-  const std::uint32_t i = index.Find(BrickKey(b));
+  if (!(std::abs(q.x()) < kRange && std::abs(q.y()) < kRange && std::abs(q.z()) < kRange)) return false;  // also NaN
+  const int cx = FloorInt(q.x()), cy = FloorInt(q.y()), cz = FloorInt(q.z());
+  *offset = Eigen::Vector3d(q.x() - cx - 0.5, q.y() - cy - 0.5, q.z() - cz - 0.5);
+  const std::uint32_t i = BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
   if (i == detail::KeyIndexHash::kNotFound) {
     *value = cap;
     return true;
   }
   const int m = kBrickEdge - 1;
-  *value = bricks[i][static_cast<std::size_t>(CellIndex(c.x() & m, c.y() & m, c.z() & m))];
+  *value = bricks[i][static_cast<std::size_t>(CellIndex(cx & m, cy & m, cz & m))];
   return true;
 }
 
 double DistanceBound::LowerBound(const Eigen::Vector3d& p_F) const {
+  if (levels_.empty()) return -std::numeric_limits<double>::infinity();
+  return LowerBoundAt((p_F - origin_) * levels_[0].inv_s);
+}
+
+double DistanceBound::LowerBoundAt(const Eigen::Vector3d& q0) const {
   double best = -std::numeric_limits<double>::infinity();
   for (const Level& level : levels_) {
     std::uint8_t value = 0;
     Eigen::Vector3d offset;
-    if (!level.CellQ((p_F - origin_) * level.inv_s, &value, &offset)) return best;
+    if (!level.CellQ(q0 * level.scale, &value, &offset)) return best;
     best = std::max(best, level.m_mm[value] - level.s * offset.norm() * (1.0 + 1e-12));
     if (value < level.cap) break;  // unsaturated: a coarser level is no tighter
   }
   return best;
 }
 
-bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
-  for (const Level& level : levels_) {
-    std::uint8_t value = 0;
-    Eigen::Vector3d offset;
-    if (!level.CellQ((p_F - origin_) * level.inv_s, &value, &offset)) return false;
-    // m - |offset| s > radius without the square root: m - radius > 0 and
-    // (m - radius)^2 > |offset|^2 s^2.
-    const double margin = level.m_mm[value] - radius;
-    if (margin > 0.0 && margin * margin > offset.squaredNorm() * level.s * level.s * (1.0 + 1e-9)) {
-      return true;
-    }
-    if (value < level.cap) return false;  // unsaturated: a coarser level is no tighter
-  }
-  return false;
+bool DistanceBound::VoxelOccupied(int x, int y, int z) const {
+  if (levels_.empty()) return false;
+  const Level& level = levels_[0];
+  const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(x >> kBrickBits, y >> kBrickBits, z >> kBrickBits));
+  constexpr int m = kBrickEdge - 1;
+  return i != detail::KeyIndexHash::kNotFound &&
+         level.bricks[i][static_cast<std::size_t>(CellIndex(x & m, y & m, z & m))] == 0;
 }
+
+bool DistanceBound::ExcludesAt(const Eigen::Vector3d& q0, double radius) const {
+  return Probe3<false>(q0, radius).excluded;
+}
+
+bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
+  return !levels_.empty() && ExcludesAt((p_F - origin_) * levels_[0].inv_s, radius);
+}
+
 
 std::size_t DistanceBound::num_bricks() const {
   std::size_t n = 0;
@@ -200,7 +237,8 @@ std::size_t DistanceBound::num_bricks() const {
 std::size_t DistanceBound::MemoryBytes() const {
   std::size_t bytes = levels_.capacity() * sizeof(Level);
   for (const Level& level : levels_) {
-    bytes += level.bricks.capacity() * sizeof(Brick) + level.index.MemoryBytes();
+    bytes += level.bricks.capacity() * sizeof(Brick) + level.index.MemoryBytes() +
+             level.table.capacity() * sizeof(std::uint32_t);
   }
   return bytes;
 }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "occlude/collision/morton.h"
 #include "occlude/collision/oracle.h"
@@ -53,6 +55,27 @@ void SampleTriangle(const io::TriangleMesh& m, std::uint32_t t, double spacing,
   }
 }
 
+// Centre of the bounding box of points [first, last) (not empty).
+Eigen::Vector3f BoxCentre(const std::vector<Eigen::Vector3f>& p, std::size_t first, std::size_t last) {
+  Eigen::Vector3d lo = p[first].cast<double>(), hi = lo;
+  for (auto i = first; i < last; ++i) {
+    lo = lo.cwiseMin(p[i].cast<double>());
+    hi = hi.cwiseMax(p[i].cast<double>());
+  }
+  return (0.5 * (lo + hi)).cast<float>();
+}
+
+// Largest distance of offsets [first, last) from o, rounded up so that float
+// storage never shrinks it.
+float Radius(const std::vector<Eigen::Vector4f>& offsets, std::size_t first, std::size_t last,
+             const Eigen::Vector3f& o) {
+  double radius = 0.0;
+  for (auto i = first; i < last; ++i) {
+    radius = std::max(radius, (offsets[i].head<3>().cast<double>() - o.cast<double>()).norm());
+  }
+  return static_cast<float>(radius * (1.0 + 1e-6) + 1e-6);
+}
+
 }  // namespace
 
 const char* ToString(AccuracyLevel level) {
@@ -70,8 +93,26 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   const auto start = std::chrono::steady_clock::now();
   SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = options.voxel_size_mm;
-  lower_ = SphereTree::Build(lower_L, tree_options);
-  upper_ = SphereTree::Build(upper_U, tree_options);
+  {
+    // The two trees are independent: the upper's on a second thread (a build
+    // may use two), an exception there rethrown here.
+    std::exception_ptr upper_error;
+    std::thread upper_thread([&] {
+      try {
+        upper_ = SphereTree::Build(upper_U, tree_options);
+      } catch (...) {
+        upper_error = std::current_exception();
+      }
+    });
+    try {
+      lower_ = SphereTree::Build(lower_L, tree_options);
+    } catch (...) {
+      upper_thread.join();
+      throw;
+    }
+    upper_thread.join();
+    if (upper_error) std::rethrow_exception(upper_error);
+  }
   NarrowBandOptions sdf_options;
   sdf_options.dilation_voxels = options.sdf_dilation_voxels;
   sdf_ = NarrowBandSdf::Build(lower_L, lower_.grid(), sdf_options);
@@ -138,30 +179,33 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       node_leaf_end_[n] = node_leaf_end_[first + count - 1];
     }
   }
-  // Per cell (node of the query's cell level): the centre of its samples'
-  // bounding box and their largest distance from it, rounded up so that float
-  // storage never shrinks it (the query's cell filter).
+  // Per cell (node of the query's cell level) and per voxel: the centre of
+  // the samples' bounding box and their largest distance from it (the query's
+  // culls). Samples and voxel centres are also stored as float offsets from
+  // their cell's centre, the radii measured from those offsets.
   {
     const int level = std::min(options_.cell_level, oct.top_level);
     const std::uint32_t begin = oct.level_begin[static_cast<std::size_t>(level)];
     const std::uint32_t end = oct.level_end[static_cast<std::size_t>(level)];
     cell_center_U_.assign(end - begin, Eigen::Vector3f::Zero());
     cell_radius_.assign(end - begin, 0.0f);
+    sample_offset_U_.assign(sample_p_U_.size(), Eigen::Vector4f::Zero());
+    voxel_sphere_U_.assign(nv, Eigen::Vector4f::Zero());
     for (std::uint32_t n = begin; n < end; ++n) {
       const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
       if (first == last) continue;
-      Eigen::Vector3d lo = sample_p_U_[first].cast<double>(), hi = lo;
+      const Eigen::Vector3f c = BoxCentre(sample_p_U_, first, last);
       for (auto i = first; i < last; ++i) {
-        lo = lo.cwiseMin(sample_p_U_[i].cast<double>());
-        hi = hi.cwiseMax(sample_p_U_[i].cast<double>());
-      }
-      const Eigen::Vector3f c = (0.5 * (lo + hi)).cast<float>();
-      double radius = 0.0;
-      for (auto i = first; i < last; ++i) {
-        radius = std::max(radius, (sample_p_U_[i].cast<double>() - c.cast<double>()).norm());
+        sample_offset_U_[i].head<3>() = (sample_p_U_[i].cast<double>() - c.cast<double>()).cast<float>();
       }
       cell_center_U_[n - begin] = c;
-      cell_radius_[n - begin] = static_cast<float>(radius * (1.0 + 1e-6) + 1e-6);
+      cell_radius_[n - begin] = Radius(sample_offset_U_, first, last, Eigen::Vector3f::Zero());
+      for (auto v = node_leaf_begin_[n]; v < node_leaf_end_[n]; ++v) {
+        const auto vb = voxel_sample_begin_[v], ve = voxel_sample_begin_[v + 1];
+        if (vb == ve) continue;
+        const Eigen::Vector3f o = (BoxCentre(sample_p_U_, vb, ve).cast<double>() - c.cast<double>()).cast<float>();
+        voxel_sphere_U_[v] = Eigen::Vector4f(o.x(), o.y(), o.z(), Radius(sample_offset_U_, vb, ve, o));
+      }
     }
   }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
@@ -175,12 +219,13 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 
 std::size_t JawOracle::MemoryBytes() const {
   return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
-         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_area_.capacity() * sizeof(float) +
+         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
+         sample_area_.capacity() * sizeof(float) +
          sample_part_.capacity() * sizeof(std::int32_t) +
          voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +
          (voxel_area_.capacity() + voxel_part_.capacity() + cell_radius_.capacity()) * 4 +
-         cell_center_U_.capacity() * sizeof(Eigen::Vector3f) +
+         cell_center_U_.capacity() * sizeof(Eigen::Vector3f) + voxel_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
          (node_leaf_begin_.capacity() + node_leaf_end_.capacity()) * sizeof(std::uint32_t);
 }
 

@@ -7,8 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "occlude/collision/oracle.h"
-#include "occlude/collision/sphere_table.h"
+#include "oracle_context.h"
 
 namespace occlude::collision {
 namespace {
@@ -49,83 +48,6 @@ void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
 
 }  // namespace
 
-void JawOracle::EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                              const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
-  ++result->samples_evaluated;
-  double d = 0.0;
-  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
-  bool known = false;
-  switch (request.level) {
-    case AccuracyLevel::kVoxel: known = sdf_.CellValue(p_L, &d); break;
-    case AccuracyLevel::kSubVoxel: known = sdf_.Interpolate(p_L, &d, &grad); break;
-    case AccuracyLevel::kExact: {
-      SignedDistanceSample s;
-      known = sdf_.Exact(p_L, Reach(request), &s);
-      d = s.distance;
-      grad = s.normal;
-      break;
-    }
-  }
-  if (!known) {
-    if (!may_be_deep) return;
-    // Outside the measured range: deep inside the lower jaw, or simply far away.
-    const VoxelGrid& g = lower_.grid();
-    if (g.Classify(g.VoxelOf(p_L)) == VoxelClass::kInterior) ++result->deep_samples;
-    return;
-  }
-  result->min_distance_mm = std::min(result->min_distance_mm, d);
-  PartTotals& pt = result->parts[static_cast<std::size_t>(part)];
-  if (d < 0.0 && -d <= request.penetration_search_mm + sdf_.band_mm()) {
-    result->penetration_area_mm2 += area;
-    pt.penetration_area_mm2 += area;
-    pt.max_penetration_mm = std::max(pt.max_penetration_mm, -d);
-    if (-d > result->max_penetration_mm) {
-      result->max_penetration_mm = -d;
-      result->deepest_p_L = p_L;
-    }
-    if (request.keep_points) result->penetrations.push_back({p_L, d, area, part});
-  } else if (d >= 0.0 && d <= request.contact_band_mm) {
-    result->contact_area_mm2 += area;
-    ++result->contact_samples;
-    pt.contact_area_mm2 += area;
-    ++pt.contact_samples;
-    const Eigen::Vector3d rel = p_L - arch_.origin_L;
-    (rel.dot(arch_.lateral_L) >= 0.0 ? result->left_share : result->right_share) += area;
-    const bool anterior = part_has_tooth_[static_cast<std::size_t>(part)]
-                              ? part_is_anterior_tooth_[static_cast<std::size_t>(part)]
-                              : rel.dot(arch_.anterior_L) > arch_.anterior_split_mm;
-    (anterior ? result->anterior_share : result->posterior_share) += area;
-    if (request.keep_points) result->contacts.push_back({p_L, d, area, part});
-  }
-  if (request.residuals && d <= request.residual_band_mm) {
-    DistanceResidual r;
-    r.distance_mm = d;
-    r.p_L = p_L;
-    r.area_mm2 = area;
-    const Eigen::Vector3d n = grad.norm() > 0 ? Eigen::Vector3d(grad.normalized()) : grad;
-    r.gradient.head<3>() = n.transpose();
-    r.gradient.tail<3>() = (p_L - request.pivot_L).cross(n).transpose();
-    result->residuals.push_back(r);
-  }
-}
-
-void JawOracle::EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU,
-                             const OracleRequest& request, bool may_be_deep, OracleResult* result) const {
-  const std::uint32_t first = node_leaf_begin_[node], last = node_leaf_end_[node];
-  if (request.level == AccuracyLevel::kVoxel) {
-    for (std::uint32_t v = first; v < last; ++v) {
-      if (voxel_area_[v] <= 0.0f) continue;
-      EvaluatePoint(X_LU * voxel_centroid_U_[v].cast<double>(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
-                    may_be_deep, result);
-    }
-    return;
-  }
-  for (auto i = voxel_sample_begin_[first]; i < voxel_sample_begin_[last]; ++i) {
-    EvaluatePoint(X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]), sample_part_[i], request,
-                  may_be_deep, result);
-  }
-}
-
 void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request,
                       OracleResult* result) const {
   CheckRequest(request);
@@ -144,35 +66,46 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
-  // A cell is tested at the centre c of its samples' bounding box, r being
-  // their largest distance from c. The interpolated field is the trilinear
-  // interpolant of exact (1-Lipschitz) grid values, so each partial derivative
-  // is at most 1 in size: interp(p) >= interp(c) - |p - c|_1 >= interp(c) -
-  // sqrt(3) r. A cell with interp(c) above the outer band by sqrt(3) r holds
-  // no sample of interest (samples only count outside up to the contact band,
-  // or the residual band). The old bound, interp(c) above r + outer + 2 * 0.866
-  // s (interpolation error 0.866 s at c and at the sample), is kept when smaller.
+  // Each cell is tested at the centre c of its samples' bounding box, r being
+  // their largest distance from c (QueryContext::Irrelevant; outside the band
+  // the lower's distance bound stands in for the field). Unknown samples
+  // (outside the band) are on the centre's side when the centre is unknown
+  // too and r < band (a segment shorter than the band from a point beyond it
+  // does not reach the surface), and outside when the centre is known and
+  // Irrelevant's deep test passes.
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
   const std::uint32_t level_begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
-  const double outer = std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
-  const double interp_error = kCubeCircumradius * sdf_.voxel_size_mm();
-  constexpr double kSqrt3 = 1.7320508075688772;
-  constexpr double kSlackMm = 1e-6;  // float rounding of the stored values
+  QueryContext q(X_LU, request, sdf_, cells.reach_mm);
+  const VoxelGrid& lower_grid = lower_.grid();
   for (const std::uint32_t node : found.cells_b) {
     if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]]) continue;
-    const double r = static_cast<double>(cell_radius_[node - level_begin]);
-    double d = 0.0;
-    const Eigen::Vector3d c_L = X_LU * cell_center_U_[node - level_begin].cast<double>();
-    const bool known = sdf_.Interpolate(c_L, &d);
-    if (known && d > outer + std::min(kSqrt3 * r, r + 2.0 * interp_error) + kSlackMm) continue;
-    // A centre known to be at d > -band + r + 0.866 s has every sample within
-    // the band or outside it (same Lipschitz argument): none is deep. A centre
-    // beyond the band is farther than band_mm from the surface, so every
-    // sample (within r, below band_mm) is on the centre's side.
-    const bool may_be_deep =
-        known ? d <= r + interp_error - sdf_.band_mm()
-              : lower_.grid().Classify(lower_.grid().VoxelOf(c_L)) == VoxelClass::kInterior;
-    EvaluateCell(node, X_LU, request, may_be_deep, result);
+    // At voxel level a point's value is the field at its voxel's centre,
+    // within 0.866 s of the point: the cell's reach grows by that much.
+    const double r = static_cast<double>(cell_radius_[node - level_begin]) +
+                     (request.level == AccuracyLevel::kVoxel ? q.interp_error : 0.0);
+    const Eigen::Vector3d c_U = cell_center_U_[node - level_begin].cast<double>();
+    q.cell = q.sampler.GridPointAt(q.A * c_U + q.b);
+    float d = 0.0f;
+    q.cell_known = q.sampler.Value(q.cell.base, q.cell.local, &d);
+    q.cell_d = static_cast<double>(d);
+    q.cell_r = r;
+    if (q.cell_known) {
+      if (request.cull && q.Irrelevant(q.cell_d, r)) continue;
+      q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior : UnknownSide::kMaybeInterior;
+    } else if (r < q.band_mm) {
+      const Eigen::Vector3d c_L = X_LU * c_U;
+      q.unknown_side = IsInterior(lower_grid, c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
+      // Outside, the lower's voxel cubes (which hold its surface) are at least
+      // LowerBound away from c, so a sample within r has D >= that - r and its
+      // interpolated value (within interp_error of D) is above the outer band.
+      if (request.cull && q.unknown_side == UnknownSide::kExterior &&
+          lower_.distance_bound().LowerBound(c_L) - r - q.interp_error > q.outer + QueryContext::kSlackMm) {
+        continue;
+      }
+    } else {
+      q.unknown_side = UnknownSide::kMaybeInterior;
+    }
+    EvaluateCell(node, &q, result);
   }
 
   const double lr = result->left_share + result->right_share;

@@ -14,6 +14,7 @@
 #include "occlude/collision/closest_point.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
+#include "signed_distance_detail.h"
 
 namespace occlude::collision {
 namespace {
@@ -27,36 +28,6 @@ std::uint64_t MortonAdd(std::uint64_t a, std::uint64_t b) {
   std::uint64_t r = 0;
   for (const std::uint64_t lane : kLanes) r |= ((a | ~lane) + (b & lane)) & lane;
   return r;
-}
-
-/// Coordinates (0..3 each) of bit i of a brick's 64-bit Morton-ordered mask.
-Eigen::Vector3i BrickLocal(int i) {
-  return Eigen::Vector3i((i & 1) | ((i >> 2) & 2), ((i >> 1) & 1) | ((i >> 3) & 2),
-                         ((i >> 2) & 1) | ((i >> 4) & 2));
-}
-
-/// Bits of a brick mask whose local coordinate along `axis` is in [lo, hi] (0..3).
-constexpr std::uint64_t LayersMask(int axis, int lo, int hi) {
-  std::uint64_t m = 0;
-  for (int i = 0; i < 64; ++i) {
-    const int local = ((i >> axis) & 1) | (((i >> (axis + 3)) & 1) << 1);
-    if (local >= lo && local <= hi) m |= std::uint64_t{1} << i;
-  }
-  return m;
-}
-
-/// Squared distance, in voxel units, from continuous voxel coordinates q to the
-/// box [lo, hi + 1) of voxel indices.
-double BoxDistance2(const Eigen::Vector3d& q, const Eigen::Vector3i& lo,
-                    const Eigen::Vector3i& hi) {
-  double d2 = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double below = lo[a] - q[a];
-    const double above = q[a] - (hi[a] + 1.0);
-    const double gap = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
-    d2 += gap * gap;
-  }
-  return d2;
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -162,49 +133,6 @@ detail::BrickSet NarrowBandSdf::BandVoxels(const VoxelGrid& grid, int dilation) 
   return band;
 }
 
-std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) const {
-  // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
-  // triangle lies within sqrt(3) (d + 2) s: the search always succeeds.
-  const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
-  std::vector<float> value(corners.num_voxels());
-  const auto& bricks = corners.bricks();
-  // Bricks [first, last): each corner seeded with the previous corner's closest
-  // triangle (neighbours in Morton order share it most of the time).
-  auto fill = [&](std::size_t first, std::size_t last) {
-    std::uint32_t hint = kNoHint;
-    std::vector<std::uint32_t> seen(mesh_->num_triangles(), 0);
-    std::uint32_t epoch = 0;
-    for (std::size_t bi = first; bi < last; ++bi) {
-      std::uint32_t slot = bricks[bi].first;
-      for (std::uint64_t m = bricks[bi].mask; m != 0; m &= m - 1, ++slot) {
-        const std::uint64_t key = bricks[bi].key << 6 | static_cast<std::uint64_t>(__builtin_ctzll(m));
-        const Eigen::Vector3i ijk = MortonDecode(key) - Eigen::Vector3i::Constant(shift_);
-        const Eigen::Vector3d p = origin_ + s_ * ijk.cast<double>();
-        Nearest n;
-        n.seen = &seen;
-        n.epoch = ++epoch;
-        if (FindNearest(p, reach * reach, hint, &n)) {
-          value[slot] = static_cast<float>(Sign(p, n).distance);
-          hint = n.triangle;
-        } else {
-          value[slot] = static_cast<float>(reach);  // unreachable for a consistent grid
-        }
-      }
-    }
-  };
-  // Two halves on two threads (the values do not depend on the split: each is
-  // the exact distance; only tie-breaking between equidistant triangles could,
-  // and the split is fixed, so builds stay deterministic).
-  const std::size_t half = bricks.size() / 2;
-  if (bricks.size() < 64) {
-    fill(0, bricks.size());
-  } else {
-    std::thread other(fill, half, bricks.size());
-    fill(0, half);
-    other.join();
-  }
-  return value;
-}
 
 void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
   // Corner (i, j, k) of a voxel is stored under the key of voxel (i, j, k):
@@ -229,6 +157,7 @@ void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
   }
   band_ = band;
 }
+
 
 void NarrowBandSdf::TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best,
                                  bool* found) const {
@@ -263,12 +192,12 @@ void NarrowBandSdf::ScanBrick(const Eigen::Vector3d& q, const Eigen::Vector3i& b
     const double lo = std::max(std::floor(q[a] - reach) - 4.0 * brick[a], 0.0);
     const double hi = std::min(std::floor(q[a] + reach) - 4.0 * brick[a], 3.0);
     if (!(lo <= hi)) return;
-    candidates &= LayersMask(a, static_cast<int>(lo), static_cast<int>(hi));
+    candidates &= detail::LayersMask(a, static_cast<int>(lo), static_cast<int>(hi));
   }
   for (std::uint64_t m = candidates; m != 0; m &= m - 1) {
     const int bit = __builtin_ctzll(m);
-    const Eigen::Vector3i v = 4 * brick + BrickLocal(bit);
-    if (BoxDistance2(q, v, v) > best->squared_distance * inv_s2) continue;
+    const Eigen::Vector3i v = 4 * brick + detail::BrickLocal(bit);
+    if (detail::BoxDistance2(q, v, v) > best->squared_distance * inv_s2) continue;
     const std::uint64_t below = (std::uint64_t{1} << bit) - 1;
     const std::size_t idx = b.first + detail::BrickSet::PopCount(b.mask & below);
     for (std::uint32_t i = tri_offsets_[idx]; i < tri_offsets_[idx + 1]; ++i) {
@@ -306,13 +235,14 @@ bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::ui
     for (int y = blo.y(); y <= bhi.y(); ++y) {
       for (int x = blo.x(); x <= bhi.x(); ++x) {
         const Eigen::Vector3i brick(x, y, z);
-        const double d2 = BoxDistance2(q, 4 * brick, 4 * brick + Eigen::Vector3i::Constant(3));
+        const double d2 = detail::BoxDistance2(q, 4 * brick, 4 * brick + Eigen::Vector3i::Constant(3));
         if (sorted) {
           order[static_cast<std::size_t>(count++)] = {d2, brick};
           continue;
         }
         if (d2 > best->squared_distance * inv_s2) continue;
-        const auto* b = surface_.Find(MortonEncode(brick));
+        const auto* b = surface_.FindAt(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                                        static_cast<std::uint32_t>(z));
         if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
       }
     }
@@ -329,7 +259,8 @@ bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::ui
   for (int i = 0; i < count; ++i) {
     const auto& [d2, brick] = order[static_cast<std::size_t>(i)];
     if (d2 > best->squared_distance * inv_s2) break;
-    const auto* b = surface_.Find(MortonEncode(brick));
+    const auto* b = surface_.FindAt(static_cast<std::uint32_t>(brick.x()), static_cast<std::uint32_t>(brick.y()),
+                                    static_cast<std::uint32_t>(brick.z()));
     if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
   }
   return found;
@@ -366,9 +297,10 @@ const float* NarrowBandSdf::Locate(const Eigen::Vector3d& p, Eigen::Vector3f* lo
   const double hi = kMortonMaxCoord - shift_;
   if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
   const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
-  const std::uint32_t i = band_.BrickIndex(MortonEncode(ijk.x() >> 2, ijk.y() >> 2, ijk.z() >> 2));
-  if (i == detail::KeyIndexHash::kNotFound) return nullptr;
-  const CornerBrick& b = corner_bricks_[i];
+  const CornerBrick* brick = BrickAt(static_cast<std::uint32_t>(ijk.x()) >> 2, static_cast<std::uint32_t>(ijk.y()) >> 2,
+                                     static_cast<std::uint32_t>(ijk.z()) >> 2);
+  if (brick == nullptr) return nullptr;
+  const CornerBrick& b = *brick;
   const Eigen::Vector3i l(ijk.x() & 3, ijk.y() & 3, ijk.z() & 3);
   const int bit = (l.x() & 1) | (l.y() & 1) << 1 | (l.z() & 1) << 2 | (l.x() >> 1) << 3 | (l.y() >> 1) << 4 |
                   (l.z() >> 1) << 5;

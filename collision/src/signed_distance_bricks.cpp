@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
 
 namespace occlude::collision {
@@ -109,6 +110,36 @@ void BrickSet::Finish() {
     voxels_ += PopCount(bricks_[i].mask);
     bool inserted = false;
     index_.Insert(bricks_[i].key, static_cast<std::uint32_t>(i), &inserted);
+  }
+  BuildDense();
+}
+
+void BrickSet::BuildDense() {
+  dense_.clear();
+  if (bricks_.empty()) return;
+  Eigen::Vector3i lo = MortonDecode(bricks_[0].key), hi = lo;
+  for (const Brick& b : bricks_) {
+    const Eigen::Vector3i c = MortonDecode(b.key);
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                            static_cast<std::size_t>(dims.z());
+  // 4 bytes per box cell against >= 16 per brick record: affordable up to 32
+  // cells per brick (the box of a jaw's band holds about 5 to 10), else the hash.
+  constexpr std::size_t kMaxCellsPerBrick = 32;
+  if (cells > kMaxCellsPerBrick * bricks_.size() + (std::size_t{1} << 16)) return;
+  for (int a = 0; a < 3; ++a) {
+    dense_lo_[a] = static_cast<std::uint32_t>(lo[a]);
+    dense_dims_[a] = static_cast<std::uint32_t>(dims[a]);
+  }
+  dense_.assign(cells, KeyIndexHash::kNotFound);
+  for (std::size_t i = 0; i < bricks_.size(); ++i) {
+    const Eigen::Vector3i c = MortonDecode(bricks_[i].key) - lo;
+    dense_[static_cast<std::size_t>(c.x()) +
+           dense_dims_[0] * (static_cast<std::size_t>(c.y()) + dense_dims_[1] * static_cast<std::size_t>(c.z()))] =
+        static_cast<std::uint32_t>(i);
   }
 }
 

@@ -150,6 +150,16 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
       }
     }
     BuildSlabs(*tree.mesh_, tree.grid_, oct, &ex);
+    ex.compact.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const ExplicitNode& e = ex.nodes[i];
+      const Eigen::Vector3f c(static_cast<float>(e.cx), static_cast<float>(e.cy), static_cast<float>(e.cz));
+      // Each coordinate rounds by at most 2^-24 of its size (2^-23 to be safe).
+      const double grow = std::sqrt(3.0) * std::ldexp(std::max({std::abs(e.cx), std::abs(e.cy), std::abs(e.cz)}), -23);
+      float r = static_cast<float>(e.radius + grow);
+      while (static_cast<double>(r) < e.radius + grow) r = std::nextafter(r, std::numeric_limits<float>::infinity());
+      ex.compact[i] = Eigen::Vector4f(c.x(), c.y(), c.z(), r);
+    }
     tree.stats_.seconds_explicit = SecondsSince(start);
   }
 

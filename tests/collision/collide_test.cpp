@@ -161,6 +161,42 @@ TEST_F(CollideOracleTest, BooleanAgreesWithAllPairs) {
   EXPECT_LT(hits, 55);
 }
 
+TEST_F(CollideOracleTest, BooleanReportsARealPairInEveryMode) {
+  // The boolean descends one tree against the other's distance bound (and,
+  // with explicit spheres, tests the survivors against the other's voxel
+  // occupancy); its pair must be one the full descent reports, at touching
+  // (delta 0) and with a tolerance, for every sphere mode.
+  std::mt19937 rng(11);
+  const SphereTree a = Tree(sphere_, 0.1);
+  const SphereTree b = Tree(box_, 0.1);
+  int hits = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    Eigen::Isometry3d X_AB = RandomPose(rng, 0.6, 3.0);
+    X_AB.translation() += Eigen::Vector3d(1.45, 0, 0);
+    for (const double delta : {0.0, 0.05}) {
+      CollisionRequest req;
+      req.delta_mm = delta;
+      CollisionResult all;
+      Collide(a, b, X_AB, req, &all);
+      const std::vector<VoxelPair> pairs = Sorted(all.pairs);
+      req.first_only = true;
+      for (SphereMode mode : {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit}) {
+        req.spheres = mode;
+        CollisionResult first;
+        Collide(a, b, X_AB, req, &first);
+        ASSERT_EQ(first.overlap, all.overlap) << trial << " " << ToString(mode);
+        ASSERT_EQ(first.pairs.size(), all.overlap ? 1u : 0u);
+        if (first.overlap) {
+          EXPECT_TRUE(std::binary_search(pairs.begin(), pairs.end(), first.pairs[0])) << trial << " " << ToString(mode);
+        }
+      }
+      hits += all.overlap ? 1 : 0;
+    }
+  }
+  EXPECT_GT(hits, 10);
+  EXPECT_LT(hits, 110);
+}
+
 TEST_F(CollideOracleTest, ExactRefinementMatchesBruteForceMinimumDistance) {
   std::mt19937 rng(77);
   const SphereTree a = Tree(sphere_, 0.12);

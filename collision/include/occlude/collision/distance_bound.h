@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,6 +37,24 @@
 #include "occlude/collision/voxel_grid.h"
 
 namespace occlude::collision {
+
+namespace detail {
+inline constexpr int kBoundBrickBits = 3;  ///< 8 cells per brick and axis
+inline constexpr int kBoundBrickEdge = 1 << kBoundBrickBits;
+/// Cell (x, y, z) (each 0..7) of a brick: x + 8 y + 64 z.
+inline int BoundCellIndex(int x, int y, int z) { return x | y << kBoundBrickBits | z << (2 * kBoundBrickBits); }
+/// floor(x) for |x| < 2^31 without a libm call.
+inline int FloorInt(double x) {
+  const int t = static_cast<int>(x);  // truncation towards zero
+  return t - (x < static_cast<double>(t) ? 1 : 0);
+}
+/// Hash key of brick coordinates b (each in [-2^20, 2^20)).
+inline std::uint64_t BoundBrickKey(const Eigen::Vector3i& b) {
+  constexpr std::int64_t kBias = std::int64_t{1} << 20;
+  return static_cast<std::uint64_t>(b.x() + kBias) << 42 | static_cast<std::uint64_t>(b.y() + kBias) << 21 |
+         static_cast<std::uint64_t>(b.z() + kBias);
+}
+}  // namespace detail
 
 class DistanceBound {
  public:
@@ -62,20 +81,80 @@ class DistanceBound {
   /// p_F, i.e. a ball of that radius about p_F misses them all. Conservative:
   /// false whenever in doubt (empty bound, NaN, far outside the key range).
   bool Excludes(const Eigen::Vector3d& p_F, double radius) const;
+  /// The same for a point given as q0 = (p_F - origin()) / cell_mm(), its
+  /// coordinates in the finest level's cells (lets a caller fold the division
+  /// into its own transform).
+  bool ExcludesAt(const Eigen::Vector3d& q0, double radius) const;
+  /// ExcludesAt and, when not excluded, the ball's gap to the surface voxels
+  /// as LowerBound sees it at the last level read (for ordering), from the
+  /// same lookups.
+  struct Probe {
+    bool excluded = false;
+    double gap_estimate = 0.0;  ///< mm (lower bound of the centre's distance minus the radius)
+  };
+  Probe ProbeAt(const Eigen::Vector3d& q0, double radius) const { return Probe3<true>(q0, radius); }
+  /// LowerBound for a point given in finest-level cell coordinates (as ExcludesAt).
+  double LowerBoundAt(const Eigen::Vector3d& q0) const;
+  /// True when voxel (x, y, z) of the grid is a surface voxel (its value is
+  /// 0). Only meaningful when has_voxel_occupancy(); false outside the bricks.
+  bool VoxelOccupied(int x, int y, int z) const;
+  /// The finest level is the voxels themselves (level 0), so VoxelOccupied works.
+  bool has_voxel_occupancy() const { return !levels_.empty() && finest_level_ == 0; }
+  /// Asks the memory system for the finest-level byte ExcludesAt(q0) reads
+  /// first (a descent calls it for all children before testing them, so that
+  /// their cache misses overlap). No effect on any answer.
+  void Prefetch(const Eigen::Vector3d& q0) const {
+    if (levels_.empty() || !(std::abs(q0.x()) < (1 << 22) && std::abs(q0.y()) < (1 << 22) && std::abs(q0.z()) < (1 << 22))) {
+      return;
+    }
+    const Level& level = levels_[0];
+    const int cx = detail::FloorInt(q0.x()), cy = detail::FloorInt(q0.y()), cz = detail::FloorInt(q0.z());
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits,
+                                                             cz >> detail::kBoundBrickBits));
+    constexpr int m = detail::kBoundBrickEdge - 1;
+    if (i != detail::KeyIndexHash::kNotFound) {
+      __builtin_prefetch(&level.bricks[i][static_cast<std::size_t>(detail::BoundCellIndex(cx & m, cy & m, cz & m))]);
+    }
+  }
+  const Eigen::Vector3d& origin() const { return origin_; }
+  /// The finest level's cell edge (the voxel size), mm; 0 when empty.
+  double cell_mm() const { return levels_.empty() ? 0.0 : levels_[0].s; }
 
   std::size_t num_bricks() const;
   std::size_t MemoryBytes() const;
 
  private:
+  template <bool kEstimate>
+  Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
   using Brick = std::array<std::uint8_t, 512>;  ///< cell x + 8 y + 64 z
   struct Level {
     double s = 0.0;  ///< cell edge, mm
     double inv_s = 0.0;
+    double s2 = 0.0;  ///< s^2
+    double scale = 1.0;  ///< the finest level's cell edge / s = 2^-shift
+    int shift = 0;       ///< octree levels above the finest level
     double cap_mm = 0.0;
     std::uint8_t cap = 0;
     std::array<double, 256> m_mm{};  ///< Q -> m in mm, rounded down
     std::vector<Brick> bricks;
     detail::KeyIndexHash index;  ///< brick key -> index into bricks
+    /// Dense brick index over the bricks' bounding box (coordinates - table_lo,
+    /// x fastest; kNotFound = no brick), one load instead of a hash probe;
+    /// empty when the box is too sparse to afford (then `index` serves).
+    std::vector<std::uint32_t> table;
+    Eigen::Vector3i table_lo = Eigen::Vector3i::Zero();
+    Eigen::Vector3i table_dims = Eigen::Vector3i::Zero();
+    void BuildTable(const std::vector<Eigen::Vector3i>& coords);
+    std::uint32_t BrickIndex(const Eigen::Vector3i& b) const {
+      if (table.empty()) return index.Find(detail::BoundBrickKey(b));
+      const auto x = static_cast<std::uint32_t>(b.x() - table_lo.x());
+      const auto y = static_cast<std::uint32_t>(b.y() - table_lo.y());
+      const auto z = static_cast<std::uint32_t>(b.z() - table_lo.z());
+      const auto nx = static_cast<std::uint32_t>(table_dims.x()), ny = static_cast<std::uint32_t>(table_dims.y());
+      if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(table_dims.z())) return detail::KeyIndexHash::kNotFound;
+      return table[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
+    }
+
     /// Q of the cell holding cell coordinates q (continuous), and q minus the
     /// cell's centre; false when q is out of the key range or NaN.
     bool CellQ(const Eigen::Vector3d& q, std::uint8_t* value, Eigen::Vector3d* offset) const;
@@ -84,6 +163,41 @@ class DistanceBound {
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::vector<Level> levels_;  ///< finest first
+  int finest_level_ = 0;       ///< octree level of levels_[0]
 };
+
+template <bool kEstimate>
+inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, double radius) const {
+  Probe probe;
+  constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
+  constexpr int m = detail::kBoundBrickEdge - 1;
+  // Finest level first, as LowerBound: the estimate (the largest bound over
+  // the levels read) then orders a descent as well as LowerBound does.
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
+    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return probe;  // also NaN
+    const int cx = detail::FloorInt(qx), cy = detail::FloorInt(qy), cz = detail::FloorInt(qz);
+    const double ox = qx - cx - 0.5, oy = qy - cy - 0.5, oz = qz - cz - 0.5;
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits, cz >> detail::kBoundBrickBits));
+    const std::uint8_t value =
+        i == detail::KeyIndexHash::kNotFound ? level.cap
+                                             : level.bricks[i][static_cast<std::size_t>(detail::BoundCellIndex(cx & m, cy & m, cz & m))];
+    // m - |offset| s > radius without the square root: m - radius > 0 and
+    // (m - radius)^2 > |offset|^2 s^2.
+    const double margin = level.m_mm[value] - radius;
+    const double o2 = ox * ox + oy * oy + oz * oz;
+    if (margin > 0.0 && margin * margin > o2 * level.s2 * (1.0 + 1e-9)) {
+      probe.excluded = true;
+      return probe;
+    }
+    if constexpr (kEstimate) {
+      const double gap = margin - level.s * std::sqrt(o2);
+      probe.gap_estimate = l == 0 ? gap : std::max(probe.gap_estimate, gap);
+    }
+    if (value < level.cap) return probe;  // unsaturated: a coarser level is no tighter
+  }
+  return probe;
+}
 
 }  // namespace occlude::collision

@@ -74,6 +74,12 @@ struct OracleRequest {
   double residual_band_mm = 0.5;        ///< residuals for samples with d <= this
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< rotation pivot of the gradients, mm in L
   bool keep_points = true;              ///< fill contacts / penetrations point lists
+  /// Skip the upper cells and voxels whose samples the field proves to count
+  /// for nothing (farther out than the contact band, or the residual band with
+  /// residuals); every total, list and residual is the same either way. false:
+  /// every sample of every broad-phase cell is evaluated (several times
+  /// slower), which also makes min_distance_mm exact beyond the contact band.
+  bool cull = true;
 };
 
 /// One evaluated upper sample (position in L at the queried pose).
@@ -114,7 +120,12 @@ struct OracleResult {
   // Contact (0 <= d <= band).
   double contact_area_mm2 = 0.0;
   std::size_t contact_samples = 0;
-  double min_distance_mm = 0.0;  ///< smallest signed distance among evaluated samples (+inf if none)
+  /// Smallest signed distance among the evaluated samples (+inf if none).
+  /// With OracleRequest::cull, samples farther out than the contact band (the
+  /// residual band with residuals) may be skipped: a minimum within that band
+  /// is exact, one beyond it only an upper bound (+inf when every sample was
+  /// skipped). Without culling it is exact over the samples within the reach.
+  double min_distance_mm = 0.0;
   double left_share = 0.0, right_share = 0.0;          ///< of contact area
   double anterior_share = 0.0, posterior_share = 0.0;  ///< of contact area
   std::vector<PartTotals> parts;             ///< one entry per upper part
@@ -123,7 +134,7 @@ struct OracleResult {
   std::vector<DistanceResidual> residuals;   ///< if requested
   // Work done.
   std::size_t cells = 0;
-  std::size_t samples_evaluated = 0;
+  std::size_t samples_evaluated = 0;  ///< samples (voxel centroids at voxel level) looked up
   std::size_t node_tests = 0;
 };
 
@@ -146,12 +157,17 @@ class JawOracle {
   std::size_t MemoryBytes() const;
 
  private:
-  /// may_be_deep: some sample of the cell may lie inside the lower beyond the
-  /// field's band (only then is an unknown sample classified, O(log n)).
-  void EvaluateCell(std::uint32_t node, const Eigen::Isometry3d& X_LU, const OracleRequest& request,
-                    bool may_be_deep, OracleResult* result) const;
-  void EvaluatePoint(const Eigen::Vector3d& p_L, double area, std::int32_t part,
-                     const OracleRequest& request, bool may_be_deep, OracleResult* result) const;
+  struct QueryContext;  // per-query constants and the field sampler (oracle_query.cpp)
+  /// Evaluates the samples (or, at voxel level, the voxel centroids) of one
+  /// upper cell, described by q (oracle_evaluate.cpp).
+  void EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* result) const;
+  /// The sub-voxel level of EvaluateCell over the cell's voxels [first, last).
+  void EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryContext* q, OracleResult* result) const;
+  /// Adds one sample at signed distance d (gradient only needed for residuals).
+  void Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
+                  std::int32_t part, const OracleRequest& request, OracleResult* result) const;
+  /// An unknown sample (outside the field's band, or no triangle within reach).
+  void CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const;
 
   OracleOptions options_;
   SphereTree lower_, upper_;
@@ -159,12 +175,16 @@ class JawOracle {
   ArchFrame arch_;
   // Upper samples in U, grouped by upper surface voxel (CSR, voxel order).
   std::vector<Eigen::Vector3f> sample_p_U_;
+  std::vector<Eigen::Vector4f> sample_offset_U_;  ///< p_U minus its cell's centre (cell_center_U_), w = 0
   std::vector<float> sample_area_;
   std::vector<std::int32_t> sample_part_;
   std::vector<std::uint32_t> voxel_sample_begin_;  ///< size = upper voxels + 1
   // Per upper voxel: area-weighted centroid and total area (the voxel level).
   std::vector<Eigen::Vector3f> voxel_centroid_U_;
   std::vector<float> voxel_area_;
+  /// Per upper voxel: centre of its samples' bounding box minus its cell's
+  /// centre (x, y, z, in U) and their largest distance from it (w).
+  std::vector<Eigen::Vector4f> voxel_sphere_U_;
   std::vector<std::int32_t> voxel_part_;
   // Per upper octree node: its leaf range [first, last) (voxel indices).
   std::vector<std::uint32_t> node_leaf_begin_, node_leaf_end_;

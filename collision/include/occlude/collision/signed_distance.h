@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "occlude/collision/key_index_hash.h"
+#include "occlude/collision/morton.h"
 #include "occlude/collision/voxel_grid.h"
 #include "occlude/io/triangle_mesh.h"
 
@@ -120,6 +121,26 @@ class BrickSet {
   void Finish();
   /// Index of brick `brick_key` in bricks() (after Finish), or KeyIndexHash::kNotFound.
   std::uint32_t BrickIndex(std::uint64_t brick_key) const { return index_.Find(brick_key); }
+  /// The same for the brick at brick coordinates (x, y, z): one load from a
+  /// dense index over the bricks' bounding box when Finish could afford one
+  /// (4 bytes per box cell, at most 32 cells per brick), else the hash.
+  /// Coordinates out of the box (or of the key range) find nothing.
+  std::uint32_t BrickIndexAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    if (dense_.empty()) {
+      constexpr std::uint32_t kLimit = 1u << 19;  // brick coordinates of 21-bit voxel keys
+      if (x >= kLimit || y >= kLimit || z >= kLimit) return KeyIndexHash::kNotFound;
+      return index_.Find(MortonEncode(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)));
+    }
+    x -= dense_lo_[0];
+    y -= dense_lo_[1];
+    z -= dense_lo_[2];
+    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return KeyIndexHash::kNotFound;
+    return dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
+  }
+  const Brick* FindAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    const std::uint32_t i = BrickIndexAt(x, y, z);
+    return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
+  }
   const Brick* Find(std::uint64_t brick_key) const {
     const std::uint32_t i = index_.Find(brick_key);
     return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
@@ -134,7 +155,7 @@ class BrickSet {
   const std::vector<Brick>& bricks() const { return bricks_; }
   std::size_t num_voxels() const { return voxels_; }
   std::size_t MemoryBytes() const {
-    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes();
+    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes() + dense_.capacity() * sizeof(std::uint32_t);
   }
   static std::uint32_t PopCount(std::uint64_t x) {
     x -= (x >> 1) & 0x5555555555555555ULL;
@@ -145,9 +166,13 @@ class BrickSet {
 
  private:
   Brick& At(std::uint64_t brick_key);
+  void BuildDense();
   std::vector<Brick> bricks_;
   KeyIndexHash index_;
   std::size_t voxels_ = 0;
+  std::vector<std::uint32_t> dense_;  ///< brick index per box cell (x fastest), or kNotFound
+  std::uint32_t dense_lo_[3] = {0, 0, 0};
+  std::uint32_t dense_dims_[3] = {0, 0, 0};
 };
 
 }  // namespace detail
@@ -198,6 +223,8 @@ class NarrowBandSdf {
   const PseudoNormals& pseudo_normals() const { return normals_; }
 
  private:
+  friend class SdfSampler;  // fast repeated lookups (sdf_sampler.h)
+
   /// A triangle's corners and bounding sphere, stored in spatial (Morton) order
   /// so that the triangles of neighbouring voxels are close in memory.
   struct PackedTriangle {
@@ -221,6 +248,13 @@ class NarrowBandSdf {
   void PackTriangles();
   detail::BrickSet BandVoxels(const VoxelGrid& grid, int dilation) const;
   std::vector<float> CornerValues(const detail::BrickSet& corners) const;
+  struct CornerScratch;  ///< per-thread buffers of CornerValues (signed_distance_corners.cpp)
+  /// The exact signed distances at the corners of brick `bi` of `corners`
+  /// (into value[rank]), from one candidate list of triangles for the brick.
+  void BrickCornerValues(const detail::BrickSet& corners, std::size_t bi, CornerScratch* scratch,
+                         std::vector<float>* value) const;
+  void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p, Nearest* best,
+                      bool* found) const;
   void FillBlocks(const detail::BrickSet& band);
   /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
   /// index or kNoHint) seeds the search. False when none is within.
@@ -263,6 +297,12 @@ class NarrowBandSdf {
   };
   detail::BrickSet band_;                  ///< shifted keys; brick i <-> corner_bricks_[i]
   std::vector<CornerBrick> corner_bricks_;
+  /// The corner brick at brick coordinates (bx, by, bz) (of shifted voxel
+  /// coordinates >> 2, each < 2^19), or null.
+  const CornerBrick* BrickAt(std::uint32_t bx, std::uint32_t by, std::uint32_t bz) const {
+    const std::uint32_t i = band_.BrickIndexAt(bx, by, bz);
+    return i == detail::KeyIndexHash::kNotFound ? nullptr : &corner_bricks_[i];
+  }
 };
 
 }  // namespace occlude::collision
