@@ -68,11 +68,43 @@ TEST_F(BrokenFileTest, Directory) {
 
 TEST_F(BrokenFileTest, EmptyFile) { ExpectRejected(Write("empty.stl", ""), "empty (0 bytes)"); }
 
+// As root (which reads any file) the load runs in a child switched to the user nobody.
 TEST_F(BrokenFileTest, UnreadableFile) {
-  if (::geteuid() == 0) GTEST_SKIP() << "running as root, which can read any file";
   const fs::path file = Write("secret.stl", BoxStl());
   fs::permissions(file, fs::perms::none);
-  ExpectRejected(file, "Permission denied");
+  fs::permissions(dir_.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                   fs::perms::others_read | fs::perms::others_exec);
+  std::string why;
+  const auto message = test::RunUnprivileged(
+      [&] {
+        try {
+          LoadMesh(file);
+          return std::string("accepted");
+        } catch (const MeshError& e) {
+          return std::string(e.what());
+        }
+      },
+      &why);
+  if (!message) GTEST_SKIP() << "cannot run as an unprivileged user: " << why;
+  EXPECT_EQ(message->rfind(file.string() + ": ", 0), 0u) << *message;
+  EXPECT_NE(message->find("Permission denied"), std::string::npos) << *message;
+  EXPECT_NE(message->find("check the file's permissions"), std::string::npos) << *message;
+}
+
+TEST_F(BrokenFileTest, LoadMeshFromBytesMatchesTheFile) {
+  const std::string stl = BoxStl();
+  const TriangleMesh from_file = LoadMesh(Write("box.stl", stl));
+  const TriangleMesh from_bytes = LoadMeshFromBytes(stl, "memory/box.stl");
+  EXPECT_EQ(from_file.vertices, from_bytes.vertices);
+  EXPECT_EQ(from_file.triangles, from_bytes.triangles);
+  EXPECT_EQ(from_bytes.parts.front().name, "box");
+  try {
+    LoadMeshFromBytes(stl.substr(0, 100), "memory/cut.stl");
+    ADD_FAILURE() << "a truncated STL was accepted";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory/cut.stl: ", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(LoadMeshFromBytes("", "memory/empty.stl"), MeshError);
 }
 
 TEST_F(BrokenFileTest, UnsupportedExtension) {
@@ -238,6 +270,15 @@ TEST_F(BrokenFileTest, PlyClaimingHugeCounts) {
   binary.replace(binary.find("ascii"), 5, "binary_little_endian");
   ExpectRejected(Write("huge-binary.ply", binary + std::string(40, '\0')),
                  "ends inside vertex 3 of 4000000000");  // 40 bytes = 3 vertices + 4 bytes
+}
+
+// Regression: an element without properties but with a count of 10^11 made the
+// body walk spin for hours (each item reads nothing, so the end is never reached).
+TEST_F(BrokenFileTest, PlyElementWithoutPropertiesAndHugeCountIsSkipped) {
+  std::string ply = kPlyHeader;
+  ply.insert(ply.find("element face"), "element junk 100000000000\n");
+  const TriangleMesh mesh = LoadMesh(Write("junk.ply", ply + "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n"));
+  EXPECT_EQ(mesh.num_triangles(), 1u);
 }
 
 TEST_F(BrokenFileTest, TruncatedBinaryPly) {
