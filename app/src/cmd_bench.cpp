@@ -1,5 +1,6 @@
 // `occlude bench`: the paper's query-rate experiment on a jaw pair, with FCL
 // side by side (CSV + PNG charts), and `--haptic`, the fixed-period loop.
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -7,6 +8,7 @@
 
 #include "bench.h"
 #include "commands.h"
+#include "memory_guard.h"
 #include "fcl_peer.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/mesh_io.h"
@@ -31,7 +33,33 @@ struct BenchArgs {
   std::vector<double> periods = {1000.0, 100.0};
   double seconds = 2.0;
   std::string out;
+  double memory_budget_mb = 0;
 };
+
+// The file of a jaw for messages.
+std::string JawName(const BenchArgs& args, const std::string& jaw) {
+  if (args.case_dir.empty()) return "the synthetic " + jaw + " jaw";
+  return (std::filesystem::path(args.case_dir) / (jaw + ".stl")).string();
+}
+
+// The memory guard at the finest voxel size the run will use: the oracle there is
+// the largest structure the bench builds (its sample spacing as in bench.cpp; FCL's
+// trees are not counted).
+void GuardBenchMemory(const BenchCase& bc, const std::vector<double>& voxels, const BenchArgs& args) {
+  if (voxels.empty()) return;
+  const double finest = *std::min_element(voxels.begin(), voxels.end());
+  std::ostringstream subject;
+  subject << "--voxel " << finest;
+  CheckMemory({subject.str(), "the contact oracle", "the finest --voxel", 5.0, "decimate the meshes",
+               {ExtentOf(JawName(args, "lower"), *bc.lower_L), ExtentOf(JawName(args, "upper"), *bc.upper_U)}},
+              [&](double voxel_mm) {
+                collision::OracleOptions options;
+                options.voxel_size_mm = voxel_mm;
+                options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
+                return collision::EstimateOracleMemory(*bc.lower_L, *bc.upper_U, options);
+              },
+              finest, ResolveMemoryBudget(args.memory_budget_mb));
+}
 
 // "auto" (the lower-to-upper direction, snapped to a coordinate axis within
 // 30 degrees), or x, y, z with an optional sign.
@@ -130,6 +158,7 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   if (args.haptic) {
     HapticOptions options;
     if (voxels_given) options.voxels_mm = args.voxels;
+    GuardBenchMemory(bc, options.voxels_mm, args);
     options.periods_us = args.periods;
     options.seconds = args.seconds;
     options.seed = args.seed;
@@ -147,6 +176,7 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
     return;
   }
 
+  GuardBenchMemory(bc, args.voxels, args);
   BenchOptions options;
   options.voxels_mm = args.voxels;
   if (!args.offsets.empty()) options.offsets_mm = args.offsets;
@@ -216,6 +246,7 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.01, 600.0));
   cmd->add_option("--out", args->out, "Output folder")->required();
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([cmd, args, voxel_opt] {
     if (args->case_dir.empty() && args->synthetic == 0) {
       throw UserError("bench: give --case DIR (with upper.stl and lower.stl) or --synthetic N");

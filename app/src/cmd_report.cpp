@@ -10,6 +10,8 @@
 
 #include "case_config.h"
 #include "commands.h"
+#include "jaw_checks.h"
+#include "memory_guard.h"
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"
 #include "pose_file.h"
@@ -25,6 +27,7 @@ struct ReportArgs {
   std::string config;
   std::string pose;
   std::string out;
+  double memory_budget_mb = 0;
 };
 
 // Reports each finished step that took over a second on stderr.
@@ -50,6 +53,14 @@ class StepClock {
   double t0_ = 0.0;
 };
 
+// The files of a jaw for messages.
+std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw) {
+  if (!jaw) return config.file.string() + " [synthetic]";
+  std::vector<std::string> files;
+  for (const auto& f : jaw->files) files.push_back(f.string());
+  return JawFilesName(files);
+}
+
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
   const CaseConfig config = LoadCaseConfig(args.config);
@@ -61,18 +72,35 @@ void RunReport(const ReportArgs& args) {
   } else {
     throw UserError(config.file.string() + ": no output folder; set [output] folder = \"...\" or pass --out");
   }
-  const std::optional<Eigen::Isometry3d> pose_file =
-      args.pose.empty() ? std::nullopt : std::optional<Eigen::Isometry3d>(ReadPoseFile(args.pose));
-  PrepareOutputDir(out);
+  // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
+  // optional's aligned Eigen payload being used uninitialized.)
+  const bool pose_file = !args.pose.empty();
+  const Eigen::Isometry3d X_LU_file = pose_file ? ReadPoseFile(args.pose) : Eigen::Isometry3d::Identity();
+  try {
+    PrepareOutputDir(out);
+  } catch (const UserError& e) {
+    if (!args.out.empty()) throw;
+    throw UserError(config.file.string() + ": output.folder: " + e.what());
+  }
 
   StepClock clock;
   clock.Start("loaded the meshes");
   double t0 = NowSeconds();
   const CaseJaws jaws = LoadCaseJaws(config);
   const double load_s = NowSeconds() - t0;
+  for (const std::string& w : JawPairWarnings(*jaws.lower_L, *jaws.upper_U, Eigen::Isometry3d::Identity(),
+                                              JawName(config, config.lower), JawName(config, config.upper))) {
+    std::cerr << "occlude: warning: " << w << "\n";
+  }
+  CheckMemory({config.file.string(), "the contact oracle and the map fields", "accuracy.voxel_mm", 5.0,
+               "decimate the meshes or raise accuracy.sample_spacing_mm",
+               {ExtentOf(JawName(config, config.lower), *jaws.lower_L),
+                ExtentOf(JawName(config, config.upper), *jaws.upper_U)}},
+              [&](double voxel_mm) { return EstimateAnalysisMemory(config, jaws, voxel_mm); },
+              config.VoxelSizeMm(), ResolveMemoryBudget(args.memory_budget_mb, config.memory_budget_mb));
   Eigen::Isometry3d X_LU;
   if (pose_file) {
-    X_LU = *pose_file;
+    X_LU = X_LU_file;
   } else {
     const auto arch = CaseArchFrame(config, *jaws.lower_L, *jaws.upper_U, Eigen::Isometry3d::Identity());
     X_LU = StartPoseOf(config, UpperOcclusalCentre(*jaws.upper_U, arch.occlusal_L));
@@ -134,6 +162,7 @@ void AddReportCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--pose", args->pose, "Pose file (JSON with a 4x4 \"X_LU\"); default: the config's start pose");
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([args] { RunReport(*args); });
 }
 

@@ -189,6 +189,17 @@ std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, doubl
   return out;
 }
 
+collision::MemoryEstimate EstimateAnalysisMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                 double voxel_mm) {
+  collision::OracleOptions options;
+  options.voxel_size_mm = voxel_mm;
+  options.sample_spacing_mm = config.sample_spacing_mm;
+  collision::MemoryEstimate total = collision::EstimateOracleMemory(*jaws.lower_L, *jaws.upper_U, options);
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.lower_L, kMapVoxelMm, 0);
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.upper_U, kMapVoxelMm, 0);
+  return total;
+}
+
 ReportAnalysis AnalyzePose(const CaseConfig& config, const CaseJaws& jaws, const Eigen::Isometry3d& X_LU,
                            const Progress& progress) {
   ReportAnalysis a;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "case_config.h"
+#include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/oracle.h"
 #include "report_case.h"
 
@@ -59,6 +60,11 @@ using Progress = std::function<void(const std::string&)>;
 /// Throws UserError when the voxel size does not fit the jaws.
 ReportAnalysis AnalyzePose(const CaseConfig& config, const CaseJaws& jaws, const Eigen::Isometry3d& X_LU,
                            const Progress& progress);
+
+/// Estimated memory of what AnalyzePose builds (the oracle at `voxel_mm` with the
+/// config's sample spacing, then the two map fields), for the memory guard.
+collision::MemoryEstimate EstimateAnalysisMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                 double voxel_mm);
 
 /// Groups points closer than `link_mm` (single linkage); returns a cluster id per point.
 std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, double link_mm);
