@@ -292,7 +292,7 @@ CaseConfig ParseCaseConfig(const std::string& text, const std::filesystem::path&
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << abs.string() << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw UserError(s.str());
+    throw UserError(toml_config::OneLine(s.str()));
   }
   CaseConfig c;
   c.file = abs;

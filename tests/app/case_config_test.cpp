@@ -262,6 +262,10 @@ INSTANTIATE_TEST_SUITE_P(
                   {"limits.memory_budget_mb", "positive number of megabytes"}},
         BadConfig{"unknown_limit", kFiles + "[limits]\nmemory_mb = 10\n",
                   {"limits.memory_mb: unknown key", "'limits.memory_budget_mb'"}},
+        // Regressions found by fuzz_case_config: messages quoting the file stay one line.
+        BadConfig{"newline_in_toml_error", kFiles + "[case]\nname = t\n", {"not valid TOML", "saw 't\\n'"}},
+        BadConfig{"newline_in_key", kFiles + "\"a\\nb\" = 1\n", {"a\\nb: unknown key"}},
+        BadConfig{"newline_in_value", kFiles + "[case]\nunits = \"m\\nm\"\n", {"unknown unit 'm\\nm'"}},
         BadConfig{"syntax_error", kFiles + "[contact\nband_mm = 0.1\n", {"not valid TOML"}},
         BadConfig{"map_scale_below_band", kFiles + "[contact]\nband_mm = 1\n[report]\nmap_max_mm = 0.5\n",
                   {"map_max_mm", "contact.band_mm"}}),
