@@ -63,6 +63,18 @@ void StlSeeds(const fs::path& dir) {
       " VERTEX 0 1E1 0\r\n ENDLOOP\r\n ENDFACET\r\nENDSOLID\r\n");
 }
 
+// Inputs that once broke a contract (see the regression tests in tests/io and tests/app).
+void RegressionSeeds(const fs::path& stl, const fs::path& ply, const fs::path& config) {
+  Put(stl / "regression-nan-cross-product.stl",
+      "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1e300 1e300 0\n"
+      "   vertex 1e300 1e300 1e-300\n  endloop\n endfacet\nendsolid t\n");
+  Put(ply / "regression-empty-element.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element junk 100000000000\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n");
+  Put(config / "regression-newline.toml", "[case]\nname = t\n\"a\\nb\" = 1\n");
+}
+
 void ObjSeeds(const fs::path& dir) {
   const TriangleMesh box = Box(10);
   std::ostringstream obj;
@@ -156,6 +168,7 @@ int main(int argc, char** argv) {
   ObjSeeds(root / "obj");
   PlySeeds(root / "ply");
   ConfigSeeds(root / "case_config");
+  RegressionSeeds(root / "stl", root / "ply", root / "case_config");
   std::cout << "seeds written to " << root.string() << "\n";
   return 0;
 }

@@ -171,6 +171,24 @@ TEST_F(BrokenFileTest, AsciiStlWithInfinity) {
                  "non-finite vertex coordinate '-inf'");
 }
 
+// Regression (fuzz_stl's contract): corners of 1e300 mm made the cross product
+// inf - inf = NaN, so the triangle was neither dropped as degenerate nor usable.
+TEST_F(BrokenFileTest, AsciiStlWithAbsurdCoordinates) {
+  ExpectRejected(Write("big.stl", "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                                  "   vertex 1e300 1e300 0\n   vertex 1e300 1e300 1e-300\n  endloop\n"
+                                  " endfacet\nendsolid t\n"),
+                 "a vertex coordinate of 1e+300 mm is beyond the +-1e15 mm");
+  // In metres, 1e13 m is 1e16 mm: also beyond.
+  try {
+    LoadOptions metres;
+    metres.unit = LengthUnit::kMetre;
+    LoadMesh(Write("far.stl", AsciiFacet("vertex 1e13 0 0")), metres);
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("1e+16 mm"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(BrokenFileTest, AsciiStlWithGarbageToken) {
   ExpectRejected(Write("abc.stl", AsciiFacet("vertex 10 abc 0")),
                  "line 5: 'abc' is not a number (vertex coordinate in facet 1)");
