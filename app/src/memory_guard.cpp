@@ -73,7 +73,7 @@ void AddMemoryBudgetOption(CLI::App* cmd, double* budget_mb) {
   cmd->add_option("--memory-budget-mb", *budget_mb,
                   "Memory the trees and fields may take, MB (default: the config's "
                   "limits.memory_budget_mb, else a quarter of the physical memory)")
-      ->check(MmBetween(0.0, false, 1e9, "a positive number of megabytes"));
+      ->check(MmBetween(0.0, false, 1e9, "a positive number of megabytes").description("MB"));
 }
 
 MemoryBudget ResolveMemoryBudget(double option_mb, std::optional<double> config_mb) {
