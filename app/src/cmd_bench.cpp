@@ -8,8 +8,8 @@
 
 #include "bench.h"
 #include "commands.h"
-#include "memory_guard.h"
 #include "fcl_peer.h"
+#include "memory_guard.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"

@@ -89,13 +89,7 @@ void RunCollide(const CollideArgs& args) {
   CheckMemory({"--voxel " + FormatMm(args.voxel_mm), "the sphere trees of both jaws", "--voxel", 1e3,
                "decimate the meshes",
                {ExtentOf(JawFilesName(args.lower), *lower_mesh), ExtentOf(JawFilesName(args.upper), *upper_mesh)}},
-              [&](double voxel_mm) {
-                collision::SphereTreeOptions o = options;
-                o.voxelize.voxel_size_mm = voxel_mm;
-                collision::MemoryEstimate e = collision::EstimateSphereTreeMemory(*lower_mesh, o);
-                e += collision::EstimateSphereTreeMemory(*upper_mesh, o);
-                return e;
-              },
+              SphereTreePairEstimate(*lower_mesh, *upper_mesh, options),
               args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
   const auto lower = BuildTreeOrExplain(lower_mesh, options, lower_name);
   const auto upper = BuildTreeOrExplain(upper_mesh, options, upper_name);

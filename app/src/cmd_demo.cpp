@@ -48,13 +48,7 @@ void RunDemo(const DemoArgs& args) {
   subject << "--voxel " << args.voxel_mm;
   CheckMemory({subject.str(), "the sphere trees of both jaws", "--voxel", 1e3, "lower --triangles",
                {ExtentOf("the synthetic lower jaw", jaws.lower_L), ExtentOf("the synthetic upper jaw", jaws.upper_U)}},
-              [&](double voxel_mm) {
-                collision::SphereTreeOptions o = tree_options;
-                o.voxelize.voxel_size_mm = voxel_mm;
-                collision::MemoryEstimate e = collision::EstimateSphereTreeMemory(jaws.lower_L, o);
-                e += collision::EstimateSphereTreeMemory(jaws.upper_U, o);
-                return e;
-              },
+              SphereTreePairEstimate(jaws.lower_L, jaws.upper_U, tree_options),
               args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
   const auto lower = BuildTreeOrExplain(std::make_shared<io::TriangleMesh>(jaws.lower_L),
                                         tree_options, "lower jaw");

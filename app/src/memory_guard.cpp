@@ -83,6 +83,17 @@ MemoryBudget ResolveMemoryBudget(double option_mb, std::optional<double> config_
   return {bytes, "the default, a quarter of the physical memory"};
 }
 
+std::function<collision::MemoryEstimate(double voxel_mm)> SphereTreePairEstimate(
+    const io::TriangleMesh& lower, const io::TriangleMesh& upper, const collision::SphereTreeOptions& options) {
+  return [&lower, &upper, options](double voxel_mm) {
+    collision::SphereTreeOptions o = options;
+    o.voxelize.voxel_size_mm = voxel_mm;
+    collision::MemoryEstimate e = collision::EstimateSphereTreeMemory(lower, o);
+    e += collision::EstimateSphereTreeMemory(upper, o);
+    return e;
+  };
+}
+
 void CheckMemory(const MemoryCheck& check,
                  const std::function<collision::MemoryEstimate(double voxel_mm)>& estimate,
                  double voxel_mm, const MemoryBudget& budget) {

@@ -66,6 +66,11 @@ void CheckMemory(const MemoryCheck& check,
                  const std::function<collision::MemoryEstimate(double voxel_mm)>& estimate,
                  double voxel_mm, const MemoryBudget& budget);
 
+/// The estimate of both jaws' sphere trees built with `options` (at the voxel
+/// size passed), for CheckMemory. The meshes must outlive the function.
+std::function<collision::MemoryEstimate(double voxel_mm)> SphereTreePairEstimate(
+    const io::TriangleMesh& lower, const io::TriangleMesh& upper, const collision::SphereTreeOptions& options);
+
 /// Megabytes (10^6 bytes) as text with at most 3 significant digits above 10.
 std::string Megabytes(std::size_t bytes);
 
