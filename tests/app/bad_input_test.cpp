@@ -311,13 +311,13 @@ TEST(MemoryGuardTest, TheSuggestedVoxelSizeRuns) {
   TempDir tmp;
   const std::string jaws = " --lower " + (GoodCase() / "lower.stl").string() + " --upper " +
                            (GoodCase() / "upper.stl").string() + " --memory-budget-mb 20";
-  const CommandRun refused = Occlude("collide" + jaws + " --voxel 0.2");
+  const CommandRun refused = Occlude("collide" + jaws + " --voxel 0.05");
   ASSERT_NE(refused.exit_code, 0) << refused.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(refused.output, m, std::regex("the smallest voxel size that fits is about ([0-9.]+) mm")))
       << refused.output;
   const double fits = std::stod(m[1]);
-  EXPECT_GT(fits, 0.2);
+  EXPECT_GT(fits, 0.05);
   const CommandRun rerun = Occlude("collide" + jaws + " --voxel " + m[1].str());
   EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
   // Within 10 % of the limit: the suggestion is the smallest, not any size that fits.

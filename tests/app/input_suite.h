@@ -91,15 +91,18 @@ inline void OpenToEveryone(const fs::path& path) {
                             perms::others_exec);
 }
 
-/// Folder of the good case (the synthetic pair, 5,000 triangles per jaw),
-/// generated once per process by `occlude synth`.
+/// Folder of the good case: lower.stl, a 20 x 10 x 20 mm box with its top at y = 0,
+/// and upper.stl, a 16 x 8 x 16 mm box resting 0.05 mm above it (in contact within
+/// the default band). Written once per process; boxes keep every run short, also
+/// under the sanitizers (each test is its own process).
 inline const fs::path& GoodCase() {
   static const TempDir* dir = [] {
     auto* d = new TempDir;  // lives until the process ends
     OpenToEveryone(d->path());
-    const CommandRun r = Occlude("synth --triangles 5000 --seed 1 --out " + (*d / "case").string());
-    if (r.exit_code != 0) ADD_FAILURE() << "occlude synth failed: " << r.output;
+    fs::create_directory(*d / "case");
     OpenToEveryone(*d / "case");
+    io::WriteBinaryStl(MakeBox({0, -10, 0}, {20, 0, 20}), *d / "case" / "lower.stl");
+    io::WriteBinaryStl(MakeBox({2, 0.05, 2}, {18, 8.05, 18}), *d / "case" / "upper.stl");
     return d;
   }();
   static const fs::path path = *dir / "case";
