@@ -204,6 +204,8 @@ struct BadConfig {
   std::vector<std::string> expected;  // substrings of the one-line message
 };
 
+void PrintTo(const BadConfig& c, std::ostream* os) { *os << c.name; }  // not its bytes
+
 class CaseConfigBadTest : public CaseConfigTest, public ::testing::WithParamInterface<BadConfig> {};
 
 TEST_P(CaseConfigBadTest, OneLineErrorNamingTheKey) {
