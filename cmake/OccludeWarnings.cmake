@@ -14,6 +14,18 @@ if(OCCLUDE_SANITIZE)
   target_link_options(occlude_sanitize INTERFACE -fsanitize=address,undefined)
 endif()
 
+# Fuzzing (tests/fuzz): coverage for libFuzzer plus ASan and UBSan on every project
+# target; the fuzz executables add -fsanitize=fuzzer (libFuzzer's main) themselves.
+if(OCCLUDE_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "occlude: OCCLUDE_FUZZ needs clang (libFuzzer): configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++ (Debian: apt-get install clang libclang-rt-14-dev)")
+  endif()
+  target_compile_options(occlude_sanitize INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g)
+  target_link_options(occlude_sanitize INTERFACE -fsanitize=address,undefined)
+endif()
+
 # Every project target links this: warnings + sanitizers + internal asserts.
 add_library(occlude_defaults INTERFACE)
 add_library(occlude::defaults ALIAS occlude_defaults)

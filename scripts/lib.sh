@@ -29,7 +29,8 @@ occlude_install_deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-# occlude_build DIR [cmake options...]: configure once, then build incrementally.
+# occlude_build DIR [cmake options...]: configure once, then build incrementally
+# (everything, or only $OCCLUDE_TARGET when that is set).
 occlude_build() {
   local dir="$OCCLUDE_ROOT/$1"
   shift
@@ -40,5 +41,5 @@ occlude_build() {
     echo "$*" >"$stamp"
   fi
   echo "occlude: building $dir"
-  cmake --build "$dir" -j"$(nproc)"
+  cmake --build "$dir" -j"$(nproc)" ${OCCLUDE_TARGET:+--target "$OCCLUDE_TARGET"}
 }

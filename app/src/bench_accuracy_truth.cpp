@@ -138,9 +138,9 @@ bool LowerDistance::Signed(const Eigen::Vector3d& p_L, double max_mm, double* d)
   if (!(best2 <= max_mm * max_mm)) return false;
   const collision::TrianglePoint q = collision::ClosestPointOnTriangle(
       p_L, mesh_->corner(best_t, 0), mesh_->corner(best_t, 1), mesh_->corner(best_t, 2));
-  const double dist = std::sqrt(best2);
-  const double side = (p_L - q.point).dot(normals_.At(best_t, bary));
-  *d = side < 0.0 ? -dist : dist;
+  // The oracle's sign rule (PseudoNormals::Signed): a point whose closest point lies on
+  // an open border counts as outside.
+  *d = normals_.Signed(best_t, bary, p_L, q.point, nullptr);
   return true;
 }
 

@@ -3,6 +3,8 @@
 #include "case_config.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -18,7 +20,8 @@ using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {"case",   "lower",  "upper",  "synthetic",
                                               "accuracy", "contact", "solver", "bounds",
-                                              "start",  "adjust", "output", "report"};
+                                              "start",  "adjust", "output", "report",
+                                              "limits"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm", "ty_mm", "tz_mm", "rx_deg", "ry_deg",
                                              "rz_deg", "locked"};
@@ -37,7 +40,8 @@ std::vector<std::string> AllDottedKeys() {
           "bounds.locked",      "start.translation_mm", "start.rotation_deg",
           "start.matrix",       "start.pivot_mm",       "adjust.translation_mm",
           "adjust.rotation_deg", "output.folder",       "report.map_max_mm",
-          "report.map_penetration_from_mm", "report.image_width_px"};
+          "report.map_penetration_from_mm", "report.image_width_px",
+          "limits.memory_budget_mb"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -244,6 +248,10 @@ void ReadAll(const Table& root, CaseConfig* c) {
     c->output_dir = t->Path("folder");
   }
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
+  if (auto t = root.SubTable("limits")) {
+    t->AllowOnly({"memory_budget_mb"});
+    c->memory_budget_mb = t->Number("memory_budget_mb", 0, true, 1e9, false, "a positive number of megabytes");
+  }
   if (c->report.map_max_mm < c->contact_band_mm) {
     root.Fail("report", "map_max_mm must be at least contact.band_mm so contacts are on the colour scale");
   }
@@ -284,7 +292,7 @@ CaseConfig ParseCaseConfig(const std::string& text, const std::filesystem::path&
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << abs.string() << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw UserError(s.str());
+    throw UserError(toml_config::OneLine(s.str()));
   }
   CaseConfig c;
   c.file = abs;
@@ -300,7 +308,11 @@ CaseConfig LoadCaseConfig(const std::filesystem::path& file) {
     throw UserError(file.string() + ": is a folder; give the case's .toml file");
   }
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw UserError(file.string() + ": cannot read the config file");
+  if (!in) {
+    const int error = errno;
+    throw UserError(file.string() + ": cannot read the config file: " + std::strerror(error) +
+                    (error == EACCES ? "; check the file's permissions" : ""));
+  }
   std::stringstream text;
   text << in.rdbuf();
   return ParseCaseConfig(text.str(), file);

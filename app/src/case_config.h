@@ -24,6 +24,8 @@
 //   [output]    folder = "out/case" (relative to the config file)
 //   [report]    map_max_mm = 0.5 (colour scale); map_penetration_from_mm = 0.01;
 //               image_width_px = 1000
+//   [limits]    memory_budget_mb (what the trees and fields may take; default a quarter
+//               of the physical memory; --memory-budget-mb overrides)
 //
 // Poses: X_LU is the pose of the upper mesh as given (frame U) in the lower's frame L;
 // translation/rotation parameters follow planner::ComposePose about the pivot with the
@@ -115,6 +117,7 @@ struct CaseConfig {
   planner::PoseParameters adjust;
   std::optional<std::filesystem::path> output_dir;  ///< absolute when set
   ReportSettings report;
+  std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget
 
   /// The voxel size the oracle uses: voxel_mm, or derived from accuracy_mm (the
   /// trilinear field's error grows with the square of the voxel: ~0.01 mm at 0.2 mm),

@@ -11,6 +11,29 @@
 
 namespace occlude::app::toml_config {
 
+std::string OneLine(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (u < 0x20 || u == 0x7f) {
+      const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string ClosestKey(const std::string& word, const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_d = std::numeric_limits<std::size_t>::max();
@@ -47,7 +70,7 @@ void Table::Fail(const std::string& key, const std::string& what) const {
   if (line > 0) s << ":" << line;
   s << ": " << (key.empty() ? (path_.empty() ? std::string("(root)") : "[" + path_ + "]") : KeyPath(key))
     << ": " << what;
-  throw UserError(s.str());
+  throw UserError(OneLine(s.str()));
 }
 
 void Table::AllowOnly(const std::vector<std::string>& allowed,
@@ -73,7 +96,7 @@ void Table::AllowOnly(const std::vector<std::string>& allowed,
     std::ostringstream s;
     s << file_.string() << ":" << k.source().begin.line << ": " << KeyPath(key) << ": unknown key";
     if (!hint.empty() || !extra.empty()) s << "; did you mean '" << hint_path << "'?";
-    throw UserError(s.str());
+    throw UserError(OneLine(s.str()));
   }
 }
 

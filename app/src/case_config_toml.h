@@ -12,6 +12,10 @@
 
 namespace occlude::app::toml_config {
 
+/// `text` with every control character written as an escape ("\n", "\x01"), so
+/// that a message quoting keys or values from the file stays one line.
+std::string OneLine(const std::string& text);
+
 /// Closest string of `candidates` to `word` by edit distance (empty if none).
 std::string ClosestKey(const std::string& word, const std::vector<std::string>& candidates);
 

@@ -2,9 +2,12 @@
 #include "case_session.h"
 
 #include <algorithm>
+#include <iostream>
 #include <sstream>
 
 #include "commands.h"
+#include "jaw_checks.h"
+#include "memory_guard.h"
 #include "occlude/collision/voxel_grid.h"
 
 namespace occlude::app {
@@ -39,10 +42,50 @@ std::vector<double> ScheduleVoxels(const CaseConfig& config) {
   return {std::max(0.8, 2.0 * v), v};
 }
 
-CaseSession::CaseSession(const CaseConfig& config) : config_(config) {
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                double voxel_mm) {
+  CaseConfig at = config;
+  at.voxel_mm = voxel_mm;
+  const std::vector<double> voxels = ScheduleVoxels(at);
+  collision::OracleOptions base;
+  base.sample_spacing_mm = config.sample_spacing_mm;
+  collision::MemoryEstimate total;
+  for (std::size_t i = 0; i < voxels.size(); ++i) {
+    total += collision::EstimateOracleMemory(*jaws.lower_L, *jaws.upper_U,
+                                             planner::StageOracleOptions(base, voxels, i));
+  }
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.lower_L, kMapVoxelMm, 0);
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.upper_U, kMapVoxelMm, 0);
+  return total;
+}
+
+namespace {
+
+// The files of a jaw for messages.
+std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw) {
+  if (!jaw) return config.file.string() + " [synthetic]";
+  std::vector<std::string> files;
+  for (const auto& f : jaw->files) files.push_back(f.string());
+  return JawFilesName(files);
+}
+
+}  // namespace
+
+CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : config_(config) {
   StepClock clock;
   clock.Start("loaded the meshes");
   jaws_ = LoadCaseJaws(config_);
+  clock.Finish();
+  const std::string lower_name = JawName(config_, config_.lower), upper_name = JawName(config_, config_.upper);
+  for (const std::string& w :
+       JawPairWarnings(*jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity(), lower_name, upper_name)) {
+    std::cerr << "occlude: warning: " << w << "\n";
+  }
+  CheckMemory({config_.file.string(), "the contact oracles and the map fields", "accuracy.voxel_mm", 5.0,
+               "decimate the meshes or raise accuracy.sample_spacing_mm",
+               {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
+              [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
+              config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
   clock.Start("estimated the arch frame");
   arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
   pivot_L_ = config_.start.pivot_mm.value_or(UpperOcclusalCentre(*jaws_.upper_U, arch_.occlusal_L));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "case_config.h"
+#include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/planner/request.h"
 #include "progress.h"
@@ -25,6 +26,11 @@ namespace occlude::app {
 /// config's voxel size ({0.8, 0.4, v} for v < 0.4, else {max(0.8, 2 v), v}).
 std::vector<double> ScheduleVoxels(const CaseConfig& config);
 
+/// Estimated peak memory of what a session of `config` builds when its finest voxel size
+/// is `voxel_mm`: the oracles of the schedule ending there and the map fields.
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                double voxel_mm);
+
 /// Exact distance fields of both meshes for the report's vertex maps.
 struct MapFields {
   collision::NarrowBandSdf lower, upper;
@@ -32,8 +38,11 @@ struct MapFields {
 
 class CaseSession {
  public:
-  /// Loads the meshes of `config` (throws UserError naming the file).
-  explicit CaseSession(const CaseConfig& config);
+  /// Loads the meshes of `config` (throws UserError naming the file), warns on stderr about
+  /// odd jaw pairs (far apart, identical, in metres), and checks the memory of everything
+  /// the session may build against the budget (memory_guard.h: `memory_budget_mb` > 0 is
+  /// the command's --memory-budget-mb, else the config's limits, else the default).
+  explicit CaseSession(const CaseConfig& config, double memory_budget_mb = 0);
 
   const CaseConfig& config() const { return config_; }
   const CaseJaws& jaws() const { return jaws_; }

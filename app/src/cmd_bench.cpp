@@ -3,7 +3,9 @@
 // `--paper`, the paper's result figures (bench_paper.h); `--accuracy`, speed
 // against accuracy (bench_accuracy.h). This file holds the options and the
 // dispatch; each mode's work lives in its own files.
+#include <algorithm>
 #include <iostream>
+#include <sstream>
 
 #include "bench.h"
 #include "bench_accuracy.h"
@@ -11,6 +13,8 @@
 #include "bench_paper.h"
 #include "commands.h"
 #include "fcl_peer.h"
+#include "memory_guard.h"
+#include "occlude/collision/oracle.h"
 #include "output_files.h"
 
 namespace occlude::app {
@@ -39,7 +43,33 @@ struct BenchArgs {
   int poses = 16;
   std::vector<double> offset_range = {-0.2, 1.0};
   double truth_spacing = 0.05;
+  double memory_budget_mb = 0;
 };
+
+// The file of a jaw for messages.
+std::string JawName(const BenchArgs& args, const std::string& jaw) {
+  if (args.case_dir.empty()) return "the synthetic " + jaw + " jaw";
+  return (std::filesystem::path(args.case_dir) / (jaw + ".stl")).string();
+}
+
+// The memory guard at the finest voxel size the run will use: the oracle there is
+// the largest structure the bench builds (its sample spacing as in bench.cpp; FCL's
+// trees are not counted).
+void GuardBenchMemory(const BenchCase& bc, const std::vector<double>& voxels, const BenchArgs& args) {
+  if (voxels.empty()) return;
+  const double finest = *std::min_element(voxels.begin(), voxels.end());
+  std::ostringstream subject;
+  subject << "--voxel " << finest;
+  CheckMemory({subject.str(), "the contact oracle", "the finest --voxel", 5.0, "decimate the meshes",
+               {ExtentOf(JawName(args, "lower"), *bc.lower_L), ExtentOf(JawName(args, "upper"), *bc.upper_U)}},
+              [&](double voxel_mm) {
+                collision::OracleOptions options;
+                options.voxel_size_mm = voxel_mm;
+                options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
+                return collision::EstimateOracleMemory(*bc.lower_L, *bc.upper_U, options);
+              },
+              finest, ResolveMemoryBudget(args.memory_budget_mb));
+}
 
 // Which of the shared options were given (the modes have their own defaults).
 struct Given {
@@ -132,6 +162,7 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   if (args.haptic) {
     HapticOptions options;
     if (voxels_given) options.voxels_mm = args.voxels;
+    GuardBenchMemory(bc, options.voxels_mm, args);
     options.periods_us = args.periods;
     options.seconds = args.seconds;
     options.seed = args.seed;
@@ -149,6 +180,7 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
     return;
   }
 
+  GuardBenchMemory(bc, args.voxels, args);
   BenchOptions options;
   options.voxels_mm = args.voxels;
   if (!args.offsets.empty()) options.offsets_mm = args.offsets;
@@ -223,6 +255,7 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.01, 600.0));
   cmd->add_option("--out", args->out, "Output folder")->required();
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   // --paper and --accuracy.
   auto* paper_opt =
       cmd->add_flag("--paper", args->paper,

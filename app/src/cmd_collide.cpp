@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "commands.h"
+#include "jaw_checks.h"
+#include "memory_guard.h"
 #include "occlude/collision/collide.h"
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"
@@ -27,6 +29,7 @@ struct CollideArgs {
   bool sweep = false;
   std::string axis = "y";
   int reps = 30;
+  double memory_budget_mb = 0;
 };
 
 // "x", "y", "z" with an optional sign ("-z").
@@ -44,6 +47,12 @@ Eigen::Vector3d ParseAxis(const std::string& text) {
     throw UserError("--axis: '" + text + "' is not an axis (use x, y, z, -x, -y or -z)");
   }
   return negative ? Eigen::Vector3d(-axis) : axis;
+}
+
+std::string FormatMm(double mm) {
+  std::ostringstream s;
+  s << mm;
+  return s.str();
 }
 
 std::shared_ptr<io::TriangleMesh> LoadJawOrExplain(const std::vector<std::string>& files,
@@ -72,8 +81,18 @@ void RunCollide(const CollideArgs& args) {
   const auto upper_mesh = LoadJawOrExplain(args.upper, *unit);
   collision::SphereTreeOptions options;
   options.voxelize.voxel_size_mm = args.voxel_mm;
-  const auto lower = BuildTreeOrExplain(lower_mesh, options, "lower jaw");
-  const auto upper = BuildTreeOrExplain(upper_mesh, options, "upper jaw");
+  const std::string lower_name = "lower jaw (" + JawFilesName(args.lower) + ")";
+  const std::string upper_name = "upper jaw (" + JawFilesName(args.upper) + ")";
+  for (const std::string& w : JawPairWarnings(*lower_mesh, *upper_mesh, X_LU, JawFilesName(args.lower), JawFilesName(args.upper))) {
+    std::cerr << "occlude: warning: " << w << "\n";
+  }
+  CheckMemory({"--voxel " + FormatMm(args.voxel_mm), "the sphere trees of both jaws", "--voxel", 1e3,
+               "decimate the meshes",
+               {ExtentOf(JawFilesName(args.lower), *lower_mesh), ExtentOf(JawFilesName(args.upper), *upper_mesh)}},
+              SphereTreePairEstimate(*lower_mesh, *upper_mesh, options),
+              args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
+  const auto lower = BuildTreeOrExplain(lower_mesh, options, lower_name);
+  const auto upper = BuildTreeOrExplain(upper_mesh, options, upper_name);
   std::cout << DescribeTree("lower", lower) << "\n" << DescribeTree("upper", upper) << "\n";
 
   collision::CollisionRequest req;
@@ -139,6 +158,7 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
       ->check(BandMm());
   cmd->add_option("--out", args->out, "Output folder for collide.json (and sweep.txt/json)");
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->add_flag("--sweep", args->sweep,
                 "Also sweep the upper jaw along --axis through the pose, timing every sphere mode");
   cmd->add_option("--axis", args->axis, "Sweep axis, lower to upper: x, y, z, -x, -y, -z")

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "memory_guard.h"
 #include "occlude/collision/collide.h"
 #include "output_files.h"
 #include "synthetic_case.h"
@@ -26,6 +27,7 @@ struct DemoArgs {
   double delta_mm = 0.1;
   int reps = 30;
   std::string out = "out/demo";
+  double memory_budget_mb = 0;
 };
 
 void RunDemo(const DemoArgs& args) {
@@ -42,6 +44,12 @@ void RunDemo(const DemoArgs& args) {
 
   collision::SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = args.voxel_mm;
+  std::ostringstream subject;
+  subject << "--voxel " << args.voxel_mm;
+  CheckMemory({subject.str(), "the sphere trees of both jaws", "--voxel", 1e3, "lower --triangles",
+               {ExtentOf("the synthetic lower jaw", jaws.lower_L), ExtentOf("the synthetic upper jaw", jaws.upper_U)}},
+              SphereTreePairEstimate(jaws.lower_L, jaws.upper_U, tree_options),
+              args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
   const auto lower = BuildTreeOrExplain(std::make_shared<io::TriangleMesh>(jaws.lower_L),
                                         tree_options, "lower jaw");
   const auto upper = BuildTreeOrExplain(std::make_shared<io::TriangleMesh>(jaws.upper_U),
@@ -89,6 +97,7 @@ void AddDemoCommand(CLI::App& app) {
   cmd->add_option("--reps", args->reps, "Repetitions per timed query")->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--out", args->out, "Output folder")->capture_default_str();
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([args] { RunDemo(*args); });
 }
 

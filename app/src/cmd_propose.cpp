@@ -9,6 +9,7 @@
 
 #include "case_session.h"
 #include "commands.h"
+#include "memory_guard.h"
 #include "output_files.h"
 #include "plan_config.h"
 #include "report_analysis.h"
@@ -22,6 +23,7 @@ namespace {
 struct ProposeArgs {
   std::string config;
   std::string out;
+  double memory_budget_mb = 0;
 };
 
 std::string PoseFileJson(const Eigen::Isometry3d& X_LU, int rank) {
@@ -31,10 +33,9 @@ std::string PoseFileJson(const Eigen::Isometry3d& X_LU, int rank) {
 void RunPropose(const ProposeArgs& args) {
   const double start = NowSeconds();
   const CaseConfig config = LoadCaseConfig(args.config);
-  const std::filesystem::path out = OutputFolder(config, args.out);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero());  // settings first
-  PrepareOutputDir(out);
-  CaseSession session(config);
+  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
+  CaseSession session(config, args.memory_budget_mb);
   const Eigen::Isometry3d X_start = session.ConfigStartPose();
   planner::PlanRequest request = PlanRequestFromConfig(config, X_start, session.pivot_L());
   const planner::OracleSchedule& schedule = session.Schedule();
@@ -97,6 +98,7 @@ void AddProposeCommand(CLI::App& app) {
   auto args = std::make_shared<ProposeArgs>();
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([args] { RunPropose(*args); });
 }
 

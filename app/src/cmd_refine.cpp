@@ -16,6 +16,7 @@
 
 #include "case_session.h"
 #include "commands.h"
+#include "memory_guard.h"
 #include "output_files.h"
 #include "plan_config.h"
 #include "pose_file.h"
@@ -36,6 +37,7 @@ struct RefineArgs {
   bool watch = false;
   int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
   double poll_seconds = 0.2;
+  double memory_budget_mb = 0;
 };
 
 json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
@@ -114,10 +116,9 @@ std::filesystem::file_time_type ModifiedAt(const std::filesystem::path& file) {
 
 void RunRefine(const RefineArgs& args) {
   const CaseConfig config = LoadCaseConfig(args.config);
-  const std::filesystem::path out = OutputFolder(config, args.out);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero());  // settings first
-  PrepareOutputDir(out);
-  auto session = std::make_unique<CaseSession>(config);
+  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
+  auto session = std::make_unique<CaseSession>(config, args.memory_budget_mb);
   Eigen::Isometry3d base = session->ConfigStartPose();
   std::string source = "the config's [start] pose";
   const std::filesystem::path last = out / "pose.json";
@@ -142,7 +143,7 @@ void RunRefine(const RefineArgs& args) {
         session->UpdateSettings(updated);
       } else {
         std::cerr << "occlude: meshes or accuracy changed: rebuilding the models\n";
-        session = std::make_unique<CaseSession>(updated);
+        session = std::make_unique<CaseSession>(updated, args.memory_budget_mb);
       }
       RefineOnce(*session, base, source, OutputFolder(updated, args.out));
     } catch (const UserError& e) {
@@ -159,6 +160,7 @@ void AddRefineCommand(CLI::App& app) {
   auto args = std::make_shared<RefineArgs>();
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->add_flag("--from-config", args->from_config, "Start from the config's [start] pose, not the last result");
   cmd->add_flag("--watch", args->watch, "Keep the trees and refine again on every save of the config file");
   cmd->add_option("--max-refinements", args->max_refinements, "With --watch: stop after this many (0 = never)")

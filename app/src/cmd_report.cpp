@@ -8,6 +8,7 @@
 #include "case_config.h"
 #include "case_session.h"
 #include "commands.h"
+#include "memory_guard.h"
 #include "output_files.h"
 #include "pose_file.h"
 #include "report_analysis.h"
@@ -21,17 +22,19 @@ struct ReportArgs {
   std::string config;
   std::string pose;
   std::string out;
+  double memory_budget_mb = 0;
 };
 
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
   const CaseConfig config = LoadCaseConfig(args.config);
-  const std::filesystem::path out = OutputFolder(config, args.out);
-  const std::optional<Eigen::Isometry3d> pose_file =
-      args.pose.empty() ? std::nullopt : std::optional<Eigen::Isometry3d>(ReadPoseFile(args.pose));
-  PrepareOutputDir(out);
-  CaseSession session(config);
-  const Eigen::Isometry3d X_LU = pose_file ? *pose_file : session.ConfigStartPose();
+  // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
+  // optional's aligned Eigen payload being used uninitialized.)
+  const bool pose_file = !args.pose.empty();
+  const Eigen::Isometry3d X_LU_file = pose_file ? ReadPoseFile(args.pose) : Eigen::Isometry3d::Identity();
+  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
+  CaseSession session(config, args.memory_budget_mb);
+  const Eigen::Isometry3d X_LU = pose_file ? X_LU_file : session.ConfigStartPose();
   ReportAnalysis analysis = AnalyzePose(session, X_LU);
   const std::string source = pose_file
                                  ? "pose file " + std::filesystem::absolute(args.pose).lexically_normal().string()
@@ -56,6 +59,17 @@ std::filesystem::path OutputFolder(const CaseConfig& config, const std::string& 
   throw UserError(config.file.string() + ": no output folder; set [output] folder = \"...\" or pass --out");
 }
 
+std::filesystem::path PrepareCaseOutput(const CaseConfig& config, const std::string& out_option) {
+  const std::filesystem::path out = OutputFolder(config, out_option);
+  try {
+    PrepareOutputDir(out);
+  } catch (const UserError& e) {
+    if (!out_option.empty()) throw;
+    throw UserError(config.file.string() + ": output.folder: " + e.what());
+  }
+  return out;
+}
+
 void AddReportCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("report",
                                  "Evaluate one pose of a case and write report.html, contact maps, metrics.json, "
@@ -64,6 +78,7 @@ void AddReportCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--pose", args->pose, "Pose file (JSON with a 4x4 \"X_LU\"); default: the config's start pose");
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([args] { RunReport(*args); });
 }
 

@@ -40,6 +40,9 @@ struct CaseConfig;
 /// The output folder of a command: --out when given, else the config's [output] folder;
 /// UserError naming the config file when neither is set.
 std::filesystem::path OutputFolder(const CaseConfig& config, const std::string& out_option);
+/// Creates OutputFolder(config, out_option) and returns it; when the folder came from the
+/// config, an error names the config's key ("CASE.toml: output.folder: ...").
+std::filesystem::path PrepareCaseOutput(const CaseConfig& config, const std::string& out_option);
 
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);

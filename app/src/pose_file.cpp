@@ -31,7 +31,9 @@ Eigen::Isometry3d ReadPoseFile(const std::filesystem::path& file) {
   try {
     in >> j;
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(file.string() + ": not valid JSON (" + e.what() + ")");
+    // JSON has no NaN or infinity; say so, since that is how they end up in a pose file.
+    throw UserError(file.string() + ": not valid JSON (" + e.what() +
+                    "); the matrix must hold finite numbers (JSON has no NaN or infinity)");
   }
   const char* key = j.contains("X_LU") ? "X_LU" : (j.contains("matrix") ? "matrix" : nullptr);
   if (!j.is_object() || key == nullptr) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "case_config.h"
+#include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/oracle.h"
 #include "case_session.h"
 #include "report_case.h"
@@ -56,6 +57,7 @@ struct ReportAnalysis {
 /// Evaluates the pose on the session's finest oracle and map fields (built on first use:
 /// throws UserError when the voxel size does not fit the jaws).
 ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU);
+
 
 /// Groups points closer than `link_mm` (single linkage); returns a cluster id per point.
 std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, double link_mm);

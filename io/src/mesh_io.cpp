@@ -55,7 +55,7 @@ std::string_view LongName(LengthUnit unit) {
   return "?";
 }
 
-detail::RawMesh ReadByExtension(const fs::path& file, const std::string& bytes) {
+detail::RawMesh ReadByExtension(const fs::path& file, std::string_view bytes) {
   const std::string extension = Lowered(file.extension().string());
   if (extension == ".stl") return detail::ReadStl(file, bytes);
   if (extension == ".obj") return detail::ReadObj(file, bytes);
@@ -173,6 +173,17 @@ TriangleMesh LoadMesh(const fs::path& file, const LoadOptions& options, LoadRepo
   LoadReport& out = report != nullptr ? *report : local;
   TriangleMesh mesh = LoadOne(file, options, out);
   CheckUnits(file.string(), mesh, options.unit, out);
+  return mesh;
+}
+
+TriangleMesh LoadMeshFromBytes(std::string_view bytes, const fs::path& name,
+                               const LoadOptions& options, LoadReport* report) {
+  LoadReport local;
+  LoadReport& out = report != nullptr ? *report : local;
+  if (bytes.empty()) detail::Fail(name, "the file is empty (0 bytes); export the mesh again");
+  TriangleMesh mesh = detail::BuildMesh(name, ReadByExtension(name, bytes),
+                                        MillimetresPer(options.unit), out);
+  CheckUnits(name.string(), mesh, options.unit, out);
   return mesh;
 }
 

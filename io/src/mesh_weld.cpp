@@ -5,11 +5,16 @@
 #include <cstring>
 
 #include "mesh_io_internal.h"
+#include "mesh_io_text.h"
 
 namespace occlude::io::detail {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Coordinates beyond this (mm) are no scan in any unit (10^9 km); below it every
+// cross product and squared area of a triangle stays finite in double.
+constexpr double kMaxCoordinateMm = 1e15;
 
 std::uint64_t Bits(double value) {
   std::uint64_t bits;
@@ -98,6 +103,13 @@ TriangleMesh BuildMesh(const fs::path& file, RawMesh raw, double mm_per_unit, Lo
       Fail(file,
            "a vertex has a non-finite coordinate (NaN or infinity); the file is corrupt: "
            "export it again");
+    }
+    for (const Eigen::Vector3d* corner : {&a, &b, &c}) {
+      const double largest = corner->cwiseAbs().maxCoeff();
+      if (largest > kMaxCoordinateMm) {
+        Fail(file, "a vertex coordinate of " + FormatNumber(largest) + " mm is beyond the +-1e15 mm any scan "
+                   "can hold; the file is corrupt (or its units are wrong)");
+      }
     }
     // Zero area, including two identical corners (which welding would merge).
     if ((b - a).cross(c - a).squaredNorm() == 0.0) {

@@ -256,6 +256,9 @@ class BodyWalker {
                                             std::to_string(element.count) +
                                             " items); only vertices and faces are read"));
       }
+      // An element without properties occupies no bytes, whatever its count: walking
+      // its (up to 2^63) items would only spin.
+      if (element.properties.empty()) continue;
       for (std::uint64_t k = 0; k < element.count; ++k) {
         for (const PlyProperty& property : element.properties) {
           WalkProperty(element, k, property);

@@ -63,6 +63,7 @@ TEST_F(CaseConfigTest, DefaultsWithOnlyTheMeshes) {
   EXPECT_FALSE(c.output_dir.has_value());
   EXPECT_FALSE(c.start.matrix.has_value());
   for (bool locked : c.locked) EXPECT_FALSE(locked);
+  EXPECT_FALSE(c.memory_budget_mb.has_value());
 }
 
 TEST_F(CaseConfigTest, EveryKeyIsRead) {
@@ -111,6 +112,8 @@ folder = "results/p7"
 map_max_mm = 0.8
 map_penetration_from_mm = 0.02
 image_width_px = 800
+[limits]
+memory_budget_mb = 1500
 )");
   EXPECT_EQ(c.name, "patient 7");
   EXPECT_EQ(c.units, io::LengthUnit::kCentimetre);
@@ -141,6 +144,7 @@ image_width_px = 800
   EXPECT_EQ(*c.output_dir, (tmp_.path() / "results" / "p7").lexically_normal());
   EXPECT_DOUBLE_EQ(c.report.map_max_mm, 0.8);
   EXPECT_EQ(c.report.image_width_px, 800);
+  EXPECT_DOUBLE_EQ(*c.memory_budget_mb, 1500.0);
 }
 
 TEST_F(CaseConfigTest, RelativePathsResolveAgainstTheConfigFolder) {
@@ -200,6 +204,8 @@ struct BadConfig {
   std::vector<std::string> expected;  // substrings of the one-line message
 };
 
+void PrintTo(const BadConfig& c, std::ostream* os) { *os << c.name; }  // not its bytes
+
 class CaseConfigBadTest : public CaseConfigTest, public ::testing::WithParamInterface<BadConfig> {};
 
 TEST_P(CaseConfigBadTest, OneLineErrorNamingTheKey) {
@@ -254,6 +260,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"translation_not_3", kFiles + "[start]\ntranslation_mm = [0, 1]\n", {"start.translation_mm", "[x, y, z]"}},
         BadConfig{"bad_units", kFiles + "[case]\nunits = \"furlong\"\n", {"case.units", "furlong", "mm, cm"}},
         BadConfig{"bad_up_axis", kFiles + "[case]\nup_axis = \"w\"\n", {"case.up_axis", "not an axis"}},
+        BadConfig{"memory_budget_not_positive", kFiles + "[limits]\nmemory_budget_mb = 0\n",
+                  {"limits.memory_budget_mb", "positive number of megabytes"}},
+        BadConfig{"unknown_limit", kFiles + "[limits]\nmemory_mb = 10\n",
+                  {"limits.memory_mb: unknown key", "'limits.memory_budget_mb'"}},
+        // Regressions found by fuzz_case_config: messages quoting the file stay one line.
+        BadConfig{"newline_in_toml_error", kFiles + "[case]\nname = t\n", {"not valid TOML", "saw 't\\n'"}},
+        BadConfig{"newline_in_key", kFiles + "\"a\\nb\" = 1\n", {"a\\nb: unknown key"}},
+        BadConfig{"newline_in_value", kFiles + "[case]\nunits = \"m\\nm\"\n", {"unknown unit 'm\\nm'"}},
         BadConfig{"syntax_error", kFiles + "[contact\nband_mm = 0.1\n", {"not valid TOML"}},
         BadConfig{"map_scale_below_band", kFiles + "[contact]\nband_mm = 1\n[report]\nmap_max_mm = 0.5\n",
                   {"map_max_mm", "contact.band_mm"}}),

@@ -45,6 +45,8 @@ struct BadCase {
   const char* expected;  // substring of the one-line message
 };
 
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }  // not its bytes
+
 class CliBadInputTest : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(CliBadInputTest, OneLineErrorNonZeroExitAndNoOutput) {

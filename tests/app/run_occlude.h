@@ -3,9 +3,12 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace occlude::test {
@@ -15,8 +18,28 @@ struct CommandRun {
   std::string output;  // stdout + stderr
 };
 
-inline CommandRun Occlude(const std::string& args) {
-  const std::string cmd = std::string(OCCLUDE_BINARY) + " " + args + " 2>&1";
+inline CommandRun OccludeWithPrefix(const std::string& prefix, const std::string& args);
+
+inline CommandRun Occlude(const std::string& args) { return OccludeWithPrefix("", args); }
+
+/// What to put before OCCLUDE_BINARY so that it runs unprivileged: "" when this
+/// process is not root; as root, setpriv switching to the user nobody (file
+/// permissions do not bind root). nullopt, with `why`, when that does not work
+/// here (no setpriv, or nobody cannot reach the binary).
+inline std::optional<std::string> UnprivilegedPrefix(std::string* why) {
+  if (::geteuid() != 0) return std::string();
+  const std::string prefix = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  const std::string probe = prefix + OCCLUDE_BINARY + " --version >/dev/null 2>&1";
+  if (std::system(probe.c_str()) != 0) {
+    *why = "'" + prefix + "occlude --version' fails (no setpriv, or the user nobody cannot reach the binary)";
+    return std::nullopt;
+  }
+  return prefix;
+}
+
+/// Runs the binary as the user nobody (see UnprivilegedPrefix; `prefix` from it).
+inline CommandRun OccludeWithPrefix(const std::string& prefix, const std::string& args) {
+  const std::string cmd = prefix + std::string(OCCLUDE_BINARY) + " " + args + " 2>&1";
   CommandRun r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) return {-1, "popen failed"};

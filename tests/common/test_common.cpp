@@ -4,6 +4,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <stdexcept>
+
+#include <grp.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace occlude::test {
 
@@ -22,6 +27,53 @@ std::optional<std::filesystem::path> SharedCase(const std::string& name) {
   std::error_code ec;
   if (std::filesystem::exists(dir / "upper.stl", ec)) return dir;
   return std::nullopt;
+}
+
+std::optional<std::string> RunUnprivileged(const std::function<std::string()>& body,
+                                           std::string* why) {
+  if (::geteuid() != 0) return body();
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    *why = "pipe() failed";
+    return std::nullopt;
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    *why = "fork() failed";
+    return std::nullopt;
+  }
+  constexpr uid_t kNobody = 65534;
+  if (pid == 0) {  // child: drop root for good, run, send the result, exit
+    ::close(fds[0]);
+    const std::string failed(1, '\x01'), passed(1, '\x02');
+    std::string result = failed + "cannot switch to uid/gid 65534 (nobody)";
+    if (::setgroups(0, nullptr) == 0 && ::setgid(kNobody) == 0 && ::setuid(kNobody) == 0) {
+      try {
+        result = passed + body();
+      } catch (const std::exception& e) {
+        result = failed + "the body threw: " + e.what();
+      }
+    }
+    std::size_t done = 0;
+    while (done < result.size()) {
+      const ssize_t n = ::write(fds[1], result.data() + done, result.size() - done);
+      if (n <= 0) break;
+      done += static_cast<std::size_t>(n);
+    }
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string out;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (out.empty() || out[0] != '\x02') {
+    *why = out.empty() ? "the unprivileged child died" : out.substr(1);
+    return std::nullopt;
+  }
+  return out.substr(1);
 }
 
 TempDir::TempDir() {

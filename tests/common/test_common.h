@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,13 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// Runs `body` as an unprivileged user and returns its result: directly when this
+/// process is not root; as root, in a forked child that switches to the user
+/// nobody (uid and gid 65534) first, so that file permissions apply (root reads
+/// and writes anything). nullopt when the switch is impossible; `why` then says why.
+std::optional<std::string> RunUnprivileged(const std::function<std::string()>& body,
+                                           std::string* why);
 
 /// Axis-aligned closed box [lo, hi] as 12 outward-facing triangles, one part.
 io::TriangleMesh MakeBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);

@@ -68,11 +68,43 @@ TEST_F(BrokenFileTest, Directory) {
 
 TEST_F(BrokenFileTest, EmptyFile) { ExpectRejected(Write("empty.stl", ""), "empty (0 bytes)"); }
 
+// As root (which reads any file) the load runs in a child switched to the user nobody.
 TEST_F(BrokenFileTest, UnreadableFile) {
-  if (::geteuid() == 0) GTEST_SKIP() << "running as root, which can read any file";
   const fs::path file = Write("secret.stl", BoxStl());
   fs::permissions(file, fs::perms::none);
-  ExpectRejected(file, "Permission denied");
+  fs::permissions(dir_.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                   fs::perms::others_read | fs::perms::others_exec);
+  std::string why;
+  const auto message = test::RunUnprivileged(
+      [&] {
+        try {
+          LoadMesh(file);
+          return std::string("accepted");
+        } catch (const MeshError& e) {
+          return std::string(e.what());
+        }
+      },
+      &why);
+  if (!message) GTEST_SKIP() << "cannot run as an unprivileged user: " << why;
+  EXPECT_EQ(message->rfind(file.string() + ": ", 0), 0u) << *message;
+  EXPECT_NE(message->find("Permission denied"), std::string::npos) << *message;
+  EXPECT_NE(message->find("check the file's permissions"), std::string::npos) << *message;
+}
+
+TEST_F(BrokenFileTest, LoadMeshFromBytesMatchesTheFile) {
+  const std::string stl = BoxStl();
+  const TriangleMesh from_file = LoadMesh(Write("box.stl", stl));
+  const TriangleMesh from_bytes = LoadMeshFromBytes(stl, "memory/box.stl");
+  EXPECT_EQ(from_file.vertices, from_bytes.vertices);
+  EXPECT_EQ(from_file.triangles, from_bytes.triangles);
+  EXPECT_EQ(from_bytes.parts.front().name, "box");
+  try {
+    LoadMeshFromBytes(stl.substr(0, 100), "memory/cut.stl");
+    ADD_FAILURE() << "a truncated STL was accepted";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory/cut.stl: ", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(LoadMeshFromBytes("", "memory/empty.stl"), MeshError);
 }
 
 TEST_F(BrokenFileTest, UnsupportedExtension) {
@@ -137,6 +169,24 @@ TEST_F(BrokenFileTest, AsciiStlWithNaN) {
 TEST_F(BrokenFileTest, AsciiStlWithInfinity) {
   ExpectRejected(Write("inf.stl", AsciiFacet("vertex -inf 0 0")),
                  "non-finite vertex coordinate '-inf'");
+}
+
+// Regression (fuzz_stl's contract): corners of 1e300 mm made the cross product
+// inf - inf = NaN, so the triangle was neither dropped as degenerate nor usable.
+TEST_F(BrokenFileTest, AsciiStlWithAbsurdCoordinates) {
+  ExpectRejected(Write("big.stl", "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                                  "   vertex 1e300 1e300 0\n   vertex 1e300 1e300 1e-300\n  endloop\n"
+                                  " endfacet\nendsolid t\n"),
+                 "a vertex coordinate of 1e+300 mm is beyond the +-1e15 mm");
+  // In metres, 1e13 m is 1e16 mm: also beyond.
+  try {
+    LoadOptions metres;
+    metres.unit = LengthUnit::kMetre;
+    LoadMesh(Write("far.stl", AsciiFacet("vertex 1e13 0 0")), metres);
+    ADD_FAILURE() << "accepted";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("1e+16 mm"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(BrokenFileTest, AsciiStlWithGarbageToken) {
@@ -238,6 +288,15 @@ TEST_F(BrokenFileTest, PlyClaimingHugeCounts) {
   binary.replace(binary.find("ascii"), 5, "binary_little_endian");
   ExpectRejected(Write("huge-binary.ply", binary + std::string(40, '\0')),
                  "ends inside vertex 3 of 4000000000");  // 40 bytes = 3 vertices + 4 bytes
+}
+
+// Regression: an element without properties but with a count of 10^11 made the
+// body walk spin for hours (each item reads nothing, so the end is never reached).
+TEST_F(BrokenFileTest, PlyElementWithoutPropertiesAndHugeCountIsSkipped) {
+  std::string ply = kPlyHeader;
+  ply.insert(ply.find("element face"), "element junk 100000000000\n");
+  const TriangleMesh mesh = LoadMesh(Write("junk.ply", ply + "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n"));
+  EXPECT_EQ(mesh.num_triangles(), 1u);
 }
 
 TEST_F(BrokenFileTest, TruncatedBinaryPly) {

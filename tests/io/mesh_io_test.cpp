@@ -522,13 +522,39 @@ TEST(MeshIoWriterTest, TargetThatIsAFolderFailsAndLeavesNoTemporaryFile) {
   EXPECT_TRUE(fs::is_directory(dir / "box.stl"));
 }
 
+// As root (which writes anywhere) the writes run in a child switched to the user nobody.
 TEST(MeshIoWriterTest, ReadOnlyFolderFailsAndLeavesNoFile) {
-  if (::geteuid() == 0) GTEST_SKIP() << "running as root, which can write into any folder";
   test::TempDir dir;
   fs::create_directory(dir / "ro");
-  fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
-  ExpectWriteFails(dir / "ro" / "box.stl", "not writable");
+  const auto rx = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                  fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
+  fs::permissions(dir.path(), rx | fs::perms::owner_write);
+  fs::permissions(dir / "ro", rx);
+  const fs::path file = dir / "ro" / "box.stl";
+  std::string why;
+  const auto messages = test::RunUnprivileged(
+      [&] {
+        std::string out;
+        for (const bool binary : {true, false}) {
+          try {
+            binary ? WriteBinaryStl(Box(), file) : WriteAsciiStl(Box(), file);
+            out += "written\n";
+          } catch (const MeshError& e) {
+            out += std::string(e.what()) + "\n";
+          }
+        }
+        return out;
+      },
+      &why);
   fs::permissions(dir / "ro", fs::perms::owner_all);
+  if (!messages) GTEST_SKIP() << "cannot run as an unprivileged user: " << why;
+  std::istringstream lines(*messages);
+  int count = 0;
+  for (std::string line; std::getline(lines, line); ++count) {
+    EXPECT_EQ(line.rfind(file.string(), 0), 0u) << line;
+    EXPECT_NE(line.find("not writable"), std::string::npos) << line;
+  }
+  EXPECT_EQ(count, 2);
   EXPECT_TRUE(HasOnly(dir / "ro", {}));
 }
 

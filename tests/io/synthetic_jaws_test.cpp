@@ -424,7 +424,11 @@ TEST_P(SyntheticPairTest, ArchDimensionsArePlausible) {
 INSTANTIATE_TEST_SUITE_P(SyntheticBudgetsAndSeeds, SyntheticPairTest,
                          ::testing::Combine(::testing::Values(std::size_t{5000},
                                                               std::size_t{20000}),
-                                            ::testing::Values(1u, 2u, 7u)));
+                                            ::testing::Values(1u, 2u, 7u)),
+                         [](const ::testing::TestParamInfo<SyntheticPairTest::ParamType>& param_info) {
+                           return "triangles" + std::to_string(std::get<0>(param_info.param)) +
+                                  "_seed" + std::to_string(std::get<1>(param_info.param));
+                         });
 
 // ------------------------------------------------------------------ self-intersection
 

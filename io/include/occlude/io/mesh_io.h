@@ -73,6 +73,12 @@ class MeshError : public std::runtime_error {
 TriangleMesh LoadMesh(const std::filesystem::path& file, const LoadOptions& options = {},
                       LoadReport* report = nullptr);
 
+/// LoadMesh on bytes already in memory (the same readers, checks and result);
+/// `name` stands for the file: its extension picks the format, and messages and
+/// the part name use it. Nothing is read from disk. Throws MeshError.
+TriangleMesh LoadMeshFromBytes(std::string_view bytes, const std::filesystem::path& name,
+                               const LoadOptions& options = {}, LoadReport* report = nullptr);
+
 /// One part file of a jaw, with optional overrides of what the name implies.
 struct JawPartFile {
   std::filesystem::path file;
