@@ -31,7 +31,7 @@ std::vector<std::string> AllDottedKeys() {
   return {"case.name",          "case.units",           "case.up_axis",
           "lower.file",         "lower.parts",          "upper.file",
           "upper.parts",        "synthetic.triangles",  "synthetic.seed",
-          "accuracy.accuracy_mm", "accuracy.voxel_mm",  "accuracy.sample_spacing_mm",
+          "accuracy.accuracy_mm", "accuracy.voxel_mm",  "accuracy.sample_spacing_mm", "accuracy.table",
           "contact.band_mm",    "contact.max_penetration_mm", "solver.name",
           "solver.starts",      "solver.seed",          "solver.threads",
           "solver.proposals",   "solver.max_seconds",   "solver.options",
@@ -108,7 +108,7 @@ void ReadSynthetic(const Table& t, CaseConfig* c) {
 }
 
 void ReadAccuracy(const Table& t, CaseConfig* c) {
-  t.AllowOnly({"accuracy_mm", "voxel_mm", "sample_spacing_mm"});
+  t.AllowOnly({"accuracy_mm", "voxel_mm", "sample_spacing_mm", "table"});
   if (auto v = t.Number("accuracy_mm", 0, true, 1, false, "a positive length in mm, at most 1")) {
     c->accuracy_mm = *v;
   }
@@ -116,6 +116,12 @@ void ReadAccuracy(const Table& t, CaseConfig* c) {
   if (auto v = t.Number("sample_spacing_mm", 0, true, 5, false, "a positive spacing in mm, at most 5")) {
     c->sample_spacing_mm = *v;
   }
+  if (auto p = t.Path("table")) {
+    CheckFile(t, "table", *p);
+    c->accuracy_table = *p;
+  }
+  const ResolutionTable table = c->accuracy_table ? LoadResolutionTable(*c->accuracy_table) : DefaultResolutionTable();
+  c->resolution = c->voxel_mm ? ExplicitResolution(*c->voxel_mm, table) : ChooseResolution(c->accuracy_mm, table);
 }
 
 void ReadContact(const Table& t, CaseConfig* c) {
@@ -264,10 +270,7 @@ const char* DofName(int dof) {
   return dof >= 0 && dof < kNumDofs ? kNames[dof] : "?";
 }
 
-double CaseConfig::VoxelSizeMm() const {
-  if (voxel_mm) return *voxel_mm;
-  return std::clamp(0.2 * std::sqrt(accuracy_mm / 0.01), 0.05, 0.5);
-}
+double CaseConfig::VoxelSizeMm() const { return resolution.chosen.voxel_mm; }
 
 std::size_t EditDistance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);

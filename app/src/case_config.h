@@ -10,8 +10,11 @@
 //   [lower], [upper]  file = "lower.stl"  or  parts = ["teeth/Tooth_18.stl", ...]
 //               (tooth numbers from names like Tooth_18; 0 = gingiva/base)
 //   [synthetic] triangles = 20000; seed = 1  (the built-in pair instead of [lower]/[upper])
-//   [accuracy]  accuracy_mm = 0.01 (wanted distance accuracy; picks the voxel size);
-//               voxel_mm (explicit voxel size, overrides); sample_spacing_mm = 0.3
+//   [accuracy]  accuracy_mm = 0.02 (wanted contact-distance accuracy: picks the voxel size
+//               and oracle level from a measured table, resolution_choice.h);
+//               table = "accuracy-table.json" (of `occlude bench --accuracy`; default: the
+//               one measured on a-bite-3shape, built in); voxel_mm (explicit voxel size,
+//               overrides accuracy_mm); sample_spacing_mm = 0.3
 //   [contact]   band_mm = 0.1 in (0, 5]; max_penetration_mm = 0.05 in [0, 5]
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
 //               proposals = 3 (K); max_seconds = 60; [solver.options] free table
@@ -44,6 +47,7 @@
 
 #include "occlude/io/mesh_io.h"
 #include "occlude/planner/pose.h"
+#include "resolution_choice.h"
 
 namespace occlude::app {
 
@@ -102,8 +106,12 @@ struct CaseConfig {
   std::optional<JawFiles> lower, upper;      ///< both set, or `synthetic`
   std::optional<SyntheticSource> synthetic;
 
-  double accuracy_mm = 0.01;
+  double accuracy_mm = 0.02;
   std::optional<double> voxel_mm;
+  std::optional<std::filesystem::path> accuracy_table;  ///< absolute when set
+  /// The voxel size and oracle level in use and why (from voxel_mm, or accuracy_mm and the
+  /// table); set by the parser.
+  ResolutionChoice resolution = ChooseResolution(0.02, DefaultResolutionTable());
   double sample_spacing_mm = 0.3;
 
   double contact_band_mm = 0.1;
@@ -119,10 +127,10 @@ struct CaseConfig {
   ReportSettings report;
   std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget
 
-  /// The voxel size the oracle uses: voxel_mm, or derived from accuracy_mm (the
-  /// trilinear field's error grows with the square of the voxel: ~0.01 mm at 0.2 mm),
-  /// clamped to [0.05, 0.5] mm.
+  /// The finest voxel size the oracle uses: voxel_mm, or chosen for accuracy_mm.
   double VoxelSizeMm() const;
+  /// The oracle's level at that voxel size (sub-voxel for an explicit voxel_mm).
+  collision::AccuracyLevel OracleLevel() const { return resolution.chosen.level; }
 };
 
 /// Reads and validates a case file. Throws UserError (one line: file, key,

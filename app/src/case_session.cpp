@@ -86,6 +86,7 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
                {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
               [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
               config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
+  std::cerr << "occlude: " << config_.resolution.Describe() << "\n";
   clock.Start("estimated the arch frame");
   arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
   pivot_L_ = config_.start.pivot_mm.value_or(UpperOcclusalCentre(*jaws_.upper_U, arch_.occlusal_L));
@@ -115,7 +116,10 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
 const planner::OracleSchedule& CaseSession::Schedule() {
   if (stages_.empty()) {
     const std::size_t n = ScheduleVoxels(config_).size();
-    for (std::size_t i = 0; i < n; ++i) stages_.push_back({&Oracle(i), collision::AccuracyLevel::kSubVoxel});
+    // Coarse stages at sub-voxel level; the finest at the level chosen for the accuracy.
+    for (std::size_t i = 0; i < n; ++i) {
+      stages_.push_back({&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
+    }
   }
   return stages_;
 }

@@ -231,7 +231,9 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
 
   t0 = NowSeconds();
   collision::OracleRequest request;
-  request.level = config.accuracy_mm < 0.005 ? collision::AccuracyLevel::kExact : collision::AccuracyLevel::kSubVoxel;
+  // The level chosen for the accuracy, but never the voxel level for a report.
+  request.level = config.OracleLevel() == collision::AccuracyLevel::kExact ? collision::AccuracyLevel::kExact
+                                                                           : collision::AccuracyLevel::kSubVoxel;
   request.contact_band_mm = config.contact_band_mm;
   request.penetration_search_mm = a.reach_mm;
   request.pivot_L = a.pivot_L;

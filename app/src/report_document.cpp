@@ -21,6 +21,24 @@ json Matrix(const Eigen::Matrix4d& m) {
   return rows;
 }
 
+
+// How the voxel size and level were chosen (resolution_choice.h).
+json ResolutionJson(const ResolutionChoice& r) {
+  json j = {{"voxel_mm", r.chosen.voxel_mm},
+            {"level", collision::ToString(r.chosen.level)},
+            {"from", r.explicit_voxel ? "accuracy.voxel_mm" : "accuracy.accuracy_mm"},
+            {"table", r.source},
+            {"met", r.met},
+            {"description", r.Describe()}};
+  if (!r.explicit_voxel) j["accuracy_mm"] = r.accuracy_mm;
+  if (r.measured) {
+    j["measured_p95_err_mm"] = r.chosen.p95_err_mm;
+    j["measured_max_err_mm"] = r.chosen.max_err_mm;
+    j["measured_median_us"] = r.chosen.median_us;
+  }
+  return j;
+}
+
 json Settings(const CaseConfig& c, const ReportAnalysis& a) {
   json solver_options = json::object();
   for (const auto& [k, v] : c.solver.options) {
@@ -37,6 +55,7 @@ json Settings(const CaseConfig& c, const ReportAnalysis& a) {
           {"accuracy_mm", c.accuracy_mm},
           {"voxel_mm", a.voxel_mm},
           {"oracle_level", collision::ToString(a.oracle.level)},
+          {"resolution", ResolutionJson(c.resolution)},
           {"sample_spacing_mm", c.sample_spacing_mm},
           {"contact_band_mm", c.contact_band_mm},
           {"max_penetration_mm", c.max_penetration_mm},

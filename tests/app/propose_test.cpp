@@ -106,6 +106,39 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
   EXPECT_NE(out.find("moved t (0.250,"), std::string::npos) << out;  // from the same base, not cumulative
 }
 
+std::string ReadText(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// metrics.json without its timings (the only part that may differ between runs).
+std::string WithoutTimings(const std::filesystem::path& file) {
+  json j = ReadJson(file);
+  EXPECT_TRUE(j.contains("timings_s")) << file;
+  j.erase("timings_s");
+  return j.dump(1);
+}
+
+// Issue 8: the same inputs, seed and thread count give byte-identical pose.json and
+// metrics.json (timings excluded), and identical proposals, from two separate processes.
+TEST(ProposeCommandTest, SameInputsSeedAndThreadsGiveByteIdenticalResults) {
+  test::TempDir tmp;
+  Write(tmp / "case.toml", Config(tmp / "out", "[0.0, 0.0, 0.0]", "seed = 7\nthreads = 2\n"));
+  for (const char* out : {"a", "b"}) {
+    const test::CommandRun r =
+        test::Occlude("propose " + (tmp / "case.toml").string() + " --out " + (tmp / out).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const std::string pose_a = ReadText(tmp / "a" / "pose.json");
+  ASSERT_FALSE(pose_a.empty());
+  EXPECT_EQ(pose_a, ReadText(tmp / "b" / "pose.json"));
+  EXPECT_EQ(ReadText(tmp / "a" / "upper_at_pose.stl"), ReadText(tmp / "b" / "upper_at_pose.stl"));
+  EXPECT_EQ(WithoutTimings(tmp / "a" / "metrics.json"), WithoutTimings(tmp / "b" / "metrics.json"));
+  EXPECT_EQ(ReadText(tmp / "a" / "proposals" / "proposal-1.json"), ReadText(tmp / "b" / "proposals" / "proposal-1.json"));
+}
+
 TEST(ProposeCommandTest, BadSolverSettingsAreOneLineErrorsNamingTheKey) {
   test::TempDir tmp;
   const std::vector<std::pair<std::string, std::string>> bad = {
