@@ -30,12 +30,13 @@ std::string PoseFileJson(const Eigen::Isometry3d& X_LU, int rank) {
   return "{\n  \"proposal\": " + std::to_string(rank) + ",\n  \"X_LU\": " + MatrixJson(X_LU.matrix()) + "\n}\n";
 }
 
-void RunPropose(const ProposeArgs& args) {
+}  // namespace
+
+Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option, double memory_budget_mb) {
   const double start = NowSeconds();
-  const CaseConfig config = LoadCaseConfig(args.config);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero());  // settings first
-  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
-  CaseSession session(config, args.memory_budget_mb);
+  const std::filesystem::path out = PrepareCaseOutput(config, out_option);
+  CaseSession session(config, memory_budget_mb);
   const Eigen::Isometry3d X_start = session.ConfigStartPose();
   planner::PlanRequest request = PlanRequestFromConfig(config, X_start, session.pivot_L());
   const planner::OracleSchedule& schedule = session.Schedule();
@@ -88,6 +89,13 @@ void RunPropose(const ProposeArgs& args) {
   }
   std::cout << "report of #1 in " << (out / "report.html").string() << "; all proposals in "
             << (out / "proposals.json").string() << " (" << std::setprecision(1) << NowSeconds() - start << " s)\n";
+  return best.X_LU;
+}
+
+namespace {
+
+void RunPropose(const ProposeArgs& args) {
+  ProposeAndReport(LoadCaseConfig(args.config), args.out, args.memory_budget_mb);
 }
 
 }  // namespace

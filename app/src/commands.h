@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,10 @@ std::filesystem::path OutputFolder(const CaseConfig& config, const std::string& 
 /// Creates OutputFolder(config, out_option) and returns it; when the folder came from the
 /// config, an error names the config's key ("CASE.toml: output.folder: ...").
 std::filesystem::path PrepareCaseOutput(const CaseConfig& config, const std::string& out_option);
+/// `occlude propose` on a loaded config (what `propose` and `demo` run): searches, writes the
+/// K proposals and the report of the best to OutputFolder(config, out_option), prints them;
+/// returns the best pose X_LU.
+Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option, double memory_budget_mb);
 
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);
