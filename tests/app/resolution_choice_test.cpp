@@ -40,7 +40,9 @@ TEST(ResolutionChoiceTest, BuiltInTableIsTheMeasuredOne) {
     EXPECT_GT(o.voxel_mm, 0.0);
     EXPECT_GE(o.p95_err_mm, 0.0);
     EXPECT_GE(o.max_err_mm, o.p95_err_mm);
-    if (o.level == AccuracyLevel::kExact) EXPECT_EQ(o.p95_err_mm, 0.0);
+    if (o.level == AccuracyLevel::kExact) {
+      EXPECT_EQ(o.p95_err_mm, 0.0);
+    }
   }
 }
 

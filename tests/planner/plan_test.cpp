@@ -63,7 +63,14 @@ TEST(PlanTest, NloptSolversStayFeasibleAndMostlyReturn) {
   const auto& c = Synthetic();
   for (SolverKind kind : {SolverKind::kNloptLocal, SolverKind::kNloptGlobal}) {
     int returned = 0;
-    for (int variant = 0; variant < 3; ++variant) {
+#ifdef OCCLUDE_SANITIZED
+    // The sanitizer lane looks for memory and UB errors: one start of each kind (the
+    // release lane checks that one of three returns).
+    constexpr int kVariants = 1;
+#else
+    constexpr int kVariants = 3;
+#endif
+    for (int variant = 0; variant < kVariants; ++variant) {
       const PlanRequest req = PerturbedRequest(kind, 1.0, 2.0, variant);
       const PlanResult res = Plan(c.schedule.stages, req);
       ASSERT_FALSE(res.proposals.empty());
@@ -75,7 +82,9 @@ TEST(PlanTest, NloptSolversStayFeasibleAndMostlyReturn) {
       const PoseError e = ComparePoses(p.X_LU, c.pair.X_LU, c.points_U);
       returned += e.translation_mm <= kReturnToleranceMm && e.rotation_deg <= kReturnToleranceDeg ? 1 : 0;
     }
-    EXPECT_GE(returned, 1) << ToString(kind);
+    if (kVariants == 3) {
+      EXPECT_GE(returned, 1) << ToString(kind);
+    }
   }
 }
 
