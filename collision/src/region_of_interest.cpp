@@ -153,13 +153,25 @@ RegionMesh SubMesh(const std::shared_ptr<const io::TriangleMesh>& whole,
     if (whole->triangle_part.size() == whole->num_triangles())
       sub->triangle_part.push_back(whole->triangle_part[t]);
   }
-  // Two unused vertices at the whole mesh's bounding-box corners: Voxelize frames its grid by
-  // the vertices' bounds, so the sub-mesh's grids are the whole mesh's (same origin and dims,
-  // hence the same voxel keys, octree cells and sample order for the kept triangles).
+  // The whole mesh's extreme vertices along each axis, unused when not already kept: Voxelize
+  // frames its grid by the vertices' bounds, so the sub-mesh's grids are the whole mesh's (same
+  // origin and dims, hence the same voxel keys, octree cells and sample order for the kept
+  // triangles). Real vertices rather than box corners, so that a maximum of a linear function
+  // over the vertices (the planner's lowest cusp) is not moved by them.
   if (!kept.empty()) {
-    const Eigen::AlignedBox3d box = whole->Bounds();
-    sub->vertices.push_back(box.min());
-    sub->vertices.push_back(box.max());
+    for (int axis = 0; axis < 3; ++axis) {
+      std::size_t lo = 0, hi = 0;
+      for (std::size_t v = 0; v < whole->num_vertices(); ++v) {
+        if (whole->vertices[v][axis] < whole->vertices[lo][axis]) lo = v;
+        if (whole->vertices[v][axis] > whole->vertices[hi][axis]) hi = v;
+      }
+      for (const std::size_t v : {lo, hi}) {
+        if (new_index[v] < 0) {
+          new_index[v] = static_cast<std::int32_t>(sub->vertices.size());
+          sub->vertices.push_back(whole->vertices[v]);
+        }
+      }
+    }
   }
   out.mesh = std::move(sub);
   out.original_triangle = std::move(kept);

@@ -75,9 +75,10 @@ struct RegionOfInterestRequest {
 };
 
 /// One jaw cut down to the region: its triangles (in the whole mesh's order), their vertices
-/// plus two unused ones at the whole mesh's bounding-box corners (so that Voxelize, which frames
-/// its grid by the vertices' bounds, gives the sub-mesh the whole mesh's grid frame), and every
-/// part of the whole mesh (so part indices and tooth numbers are unchanged).
+/// plus the whole mesh's extreme vertices along each axis, unused when not kept (so that
+/// Voxelize, which frames its grid by the vertices' bounds, gives the sub-mesh the whole mesh's
+/// grid frame), and every part of the whole mesh (so part indices and tooth numbers are
+/// unchanged).
 struct RegionMesh {
   std::shared_ptr<const io::TriangleMesh> mesh;
   std::vector<std::uint32_t> original_triangle;  ///< sub-mesh triangle -> whole-mesh triangle
