@@ -11,7 +11,8 @@
 //               (tooth numbers from names like Tooth_18; 0 = gingiva/base)
 //   [synthetic] triangles = 20000; seed = 1  (the built-in pair instead of [lower]/[upper])
 //   [accuracy]  accuracy_mm = 0.01 (wanted distance accuracy; picks the voxel size);
-//               voxel_mm (explicit voxel size, overrides); sample_spacing_mm = 0.3
+//               voxel_mm (explicit voxel size, overrides); sample_spacing_mm = 0.3;
+//               region_of_interest = true (model only what the search can reach)
 //   [contact]   band_mm = 0.1 in (0, 5]; max_penetration_mm = 0.05 in [0, 5]
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
 //               proposals = 3 (K); max_seconds = 60; [solver.options] free table
@@ -105,6 +106,9 @@ struct CaseConfig {
   double accuracy_mm = 0.01;
   std::optional<double> voxel_mm;
   double sample_spacing_mm = 0.3;
+  /// [accuracy] region_of_interest: the search's oracles model only the triangles of each jaw
+  /// that can come within reach of the other over the bounds (collision/region_of_interest.h).
+  bool region_of_interest = true;
 
   double contact_band_mm = 0.1;
   double max_penetration_mm = 0.05;

@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "jaw_checks.h"
 #include "memory_guard.h"
+#include "occlude/collision/region_of_interest.h"
 #include "occlude/collision/voxel_grid.h"
 
 namespace occlude::app {
@@ -93,6 +94,24 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
 
 Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }
 
+std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+                                                               std::shared_ptr<const io::TriangleMesh> upper_U,
+                                                               const collision::OracleOptions& options,
+                                                               const std::string& what) {
+  StepClock clock;
+  clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
+  try {
+    return std::make_unique<collision::JawOracle>(std::move(lower_L), std::move(upper_U), options);
+  } catch (const collision::VoxelizeError& e) {
+    throw UserError(config_.file.string() + ": accuracy: " + e.what());
+  }
+}
+
+collision::RegionOfInterestRequest CaseSession::RegionRequest(double band_mm) const {
+  const Eigen::Isometry3d X_start = ConfigStartPose();
+  return SessionRegionRequest(config_, X_start, X_start * pivot_L_, band_mm);
+}
+
 const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
   const std::vector<double> voxels = ScheduleVoxels(config_);
   if (oracles_.empty()) oracles_.resize(voxels.size());
@@ -100,14 +119,21 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
     collision::OracleOptions base;
     base.sample_spacing_mm = config_.sample_spacing_mm;
     base.arch = arch_;
-    StepClock clock;
-    clock.Start("built the " + Mm(voxels[index]) + " mm contact oracle");
-    try {
-      oracles_[index] = std::make_unique<collision::JawOracle>(
-          jaws_.lower_L, jaws_.upper_U, planner::StageOracleOptions(base, voxels, index));
-    } catch (const collision::VoxelizeError& e) {
-      throw UserError(config_.file.string() + ": accuracy: " + e.what());
+    const collision::OracleOptions options = planner::StageOracleOptions(base, voxels, index);
+    OracleModel model{options.voxel_size_mm, std::nullopt, 0, 0.0};
+    if (!config_.region_of_interest) {
+      oracles_[index] = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, "");
+    } else {
+      const collision::RegionOfInterest roi = collision::ComputeRegionOfInterest(
+          jaws_.lower_L, jaws_.upper_U, RegionRequest(SessionReadRadiusMm(config_, options)));
+      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats) << "\n";
+      oracles_[index] = BuildOracle(roi.lower.mesh, roi.upper.mesh, options, " on the region of interest");
+      model.region = roi.stats;
+      model.build_seconds = roi.stats.seconds;
     }
+    model.bytes = oracles_[index]->MemoryBytes();
+    model.build_seconds += oracles_[index]->build_seconds();
+    models_.push_back(model);
   }
   return *oracles_[index];
 }
@@ -120,7 +146,28 @@ const planner::OracleSchedule& CaseSession::Schedule() {
   return stages_;
 }
 
-const collision::JawOracle& CaseSession::FinestOracle() { return Oracle(ScheduleVoxels(config_).size() - 1); }
+const collision::JawOracle& CaseSession::FinestOracle() {
+  const std::size_t last = ScheduleVoxels(config_).size() - 1;
+  if (!config_.region_of_interest) return Oracle(last);
+  if (!whole_finest_) {
+    collision::OracleOptions base;
+    base.sample_spacing_mm = config_.sample_spacing_mm;
+    base.arch = arch_;
+    const collision::OracleOptions options = planner::StageOracleOptions(base, ScheduleVoxels(config_), last);
+    whole_finest_ = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, " on the whole jaws");
+    models_.push_back({options.voxel_size_mm, std::nullopt, whole_finest_->MemoryBytes(), whole_finest_->build_seconds()});
+  }
+  return *whole_finest_;
+}
+
+const collision::JawOracle& CaseSession::FinestOracleAt(const Eigen::Isometry3d& X_LU) {
+  if (!config_.region_of_interest || whole_finest_) return FinestOracle();
+  const double displacement = collision::MaxDisplacementMm(*jaws_.upper_U, RegionRequest(0.0));
+  if (collision::RegionCoversPose(*jaws_.upper_U, ConfigStartPose(), X_LU, displacement)) {
+    return Oracle(ScheduleVoxels(config_).size() - 1);
+  }
+  return FinestOracle();
+}
 
 const MapFields& CaseSession::Maps() {
   if (!maps_) {
@@ -130,6 +177,22 @@ const MapFields& CaseSession::Maps() {
   }
   return *maps_;
 }
+
+namespace {
+
+// The inputs of a session's region of interest besides the models' (start pose, bounds, locks,
+// the bands: session_region.h).
+bool SameRegionInputs(const CaseConfig& a, const CaseConfig& b) {
+  for (std::size_t d = 0; d < kNumDofs; ++d) {
+    if (a.bounds[d].min != b.bounds[d].min || a.bounds[d].max != b.bounds[d].max) return false;
+  }
+  return a.locked == b.locked && a.start.matrix == b.start.matrix &&
+         a.start.params.translation_mm == b.start.params.translation_mm &&
+         a.start.params.rotation_deg == b.start.params.rotation_deg && a.contact_band_mm == b.contact_band_mm &&
+         a.max_penetration_mm == b.max_penetration_mm && a.report.map_max_mm == b.report.map_max_mm;
+}
+
+}  // namespace
 
 bool CaseSession::Reusable(const CaseConfig& other) const {
   auto same_files = [](const std::optional<JawFiles>& a, const std::optional<JawFiles>& b) {
@@ -143,7 +206,8 @@ bool CaseSession::Reusable(const CaseConfig& other) const {
   return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) && same_synthetic &&
          config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
          ScheduleVoxels(config_) == ScheduleVoxels(other) && config_.sample_spacing_mm == other.sample_spacing_mm &&
-         config_.start.pivot_mm == other.start.pivot_mm;
+         config_.start.pivot_mm == other.start.pivot_mm && config_.region_of_interest == other.region_of_interest &&
+         (!config_.region_of_interest || oracles_.empty() || SameRegionInputs(config_, other));
 }
 
 }  // namespace occlude::app
