@@ -18,6 +18,9 @@ namespace {
 // keeps the search for a 1 mm reach to a few voxels per vertex.
 constexpr double kMapVoxelMm = 0.4;
 
+// A region keeping at least this share of a jaw's triangles is not worth a cut (session_region.h).
+constexpr double kWholeAboveShare = 0.95;
+
 collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
   collision::VoxelizeOptions options;
   options.voxel_size_mm = kMapVoxelMm;
@@ -126,8 +129,20 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
     } else {
       const collision::RegionOfInterest roi = collision::ComputeRegionOfInterest(
           jaws_.lower_L, jaws_.upper_U, RegionRequest(SessionReadRadiusMm(config_, options)));
-      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats) << "\n";
-      oracles_[index] = BuildOracle(roi.lower.mesh, roi.upper.mesh, options, " on the region of interest");
+      // A jaw that keeps nearly everything is modelled whole (the cut would save little and
+      // cost a copy of the mesh), and so is one that keeps nothing (jaws out of each other's
+      // reach: an oracle needs a surface).
+      auto pick = [](const collision::RegionMesh& sub, const std::shared_ptr<const io::TriangleMesh>& whole) {
+        const auto kept = static_cast<double>(sub.mesh->num_triangles());
+        return sub.mesh->empty() || kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles()) ? whole
+                                                                                                           : sub.mesh;
+      };
+      const auto lower = pick(roi.lower, jaws_.lower_L), upper = pick(roi.upper, jaws_.upper_U);
+      model.lower_cut = lower != jaws_.lower_L;
+      model.upper_cut = upper != jaws_.upper_U;
+      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats)
+                << (model.lower_cut || model.upper_cut ? "" : "; too little to cut: modelling the whole jaws") << "\n";
+      oracles_[index] = BuildOracle(lower, upper, options, " on the region of interest");
       model.region = roi.stats;
       model.build_seconds = roi.stats.seconds;
     }

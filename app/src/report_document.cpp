@@ -40,7 +40,8 @@ json Settings(const CaseConfig& c, const ReportAnalysis& a) {
       o["region_of_interest"] = {{"reach_mm", m.region->reach_mm},           {"band_mm", m.region->band_mm},
                                  {"displacement_mm", m.region->displacement_mm}, {"lower_kept", m.region->lower_kept},
                                  {"lower_total", m.region->lower_total},     {"upper_kept", m.region->upper_kept},
-                                 {"upper_total", m.region->upper_total},     {"select_s", m.region->seconds}};
+                                 {"upper_total", m.region->upper_total},     {"select_s", m.region->seconds},
+                                 {"lower_cut", m.lower_cut},                  {"upper_cut", m.upper_cut}};
     }
     oracles.push_back(o);
   }

@@ -22,6 +22,7 @@ struct OracleModel {
   std::optional<collision::RegionOfInterestStats> region;
   std::size_t bytes = 0;
   double build_seconds = 0.0;
+  bool lower_cut = false, upper_cut = false;  ///< modelled on the region's sub-mesh (else whole)
 };
 
 /// The farthest the session's queries read the lower jaw around an upper point on an oracle

@@ -173,6 +173,10 @@ RegionMesh SubMesh(const std::shared_ptr<const io::TriangleMesh>& whole,
       }
     }
   }
+  for (auto* v : {&sub->vertices, &sub->face_normals})
+    v->shrink_to_fit();  // trees count mesh bytes
+  sub->triangles.shrink_to_fit();
+  sub->triangle_part.shrink_to_fit();
   out.mesh = std::move(sub);
   out.original_triangle = std::move(kept);
   return out;
