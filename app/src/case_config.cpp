@@ -32,6 +32,7 @@ std::vector<std::string> AllDottedKeys() {
           "lower.file",         "lower.parts",          "upper.file",
           "upper.parts",        "synthetic.triangles",  "synthetic.seed",
           "accuracy.accuracy_mm", "accuracy.voxel_mm",  "accuracy.sample_spacing_mm", "accuracy.table",
+          "accuracy.region_of_interest",
           "contact.band_mm",    "contact.max_penetration_mm", "solver.name",
           "solver.starts",      "solver.seed",          "solver.threads",
           "solver.proposals",   "solver.max_seconds",   "solver.options",
@@ -108,7 +109,7 @@ void ReadSynthetic(const Table& t, CaseConfig* c) {
 }
 
 void ReadAccuracy(const Table& t, CaseConfig* c) {
-  t.AllowOnly({"accuracy_mm", "voxel_mm", "sample_spacing_mm", "table"});
+  t.AllowOnly({"accuracy_mm", "voxel_mm", "sample_spacing_mm", "table", "region_of_interest"});
   if (auto v = t.Number("accuracy_mm", 0, true, 1, false, "a positive length in mm, at most 1")) {
     c->accuracy_mm = *v;
   }
@@ -116,6 +117,7 @@ void ReadAccuracy(const Table& t, CaseConfig* c) {
   if (auto v = t.Number("sample_spacing_mm", 0, true, 5, false, "a positive spacing in mm, at most 5")) {
     c->sample_spacing_mm = *v;
   }
+  if (auto v = t.Bool("region_of_interest")) c->region_of_interest = *v;
   if (auto p = t.Path("table")) {
     CheckFile(t, "table", *p);
     c->accuracy_table = *p;

@@ -14,7 +14,8 @@
 //               and oracle level from a measured table, resolution_choice.h);
 //               table = "accuracy-table.json" (of `occlude bench --accuracy`; default: the
 //               one measured on a-bite-3shape, built in); voxel_mm (explicit voxel size,
-//               overrides accuracy_mm); sample_spacing_mm = 0.3
+//               overrides accuracy_mm); sample_spacing_mm = 0.3;
+//               region_of_interest = true (model only what the search can reach)
 //   [contact]   band_mm = 0.1 in (0, 5]; max_penetration_mm = 0.05 in [0, 5]
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
 //               proposals = 3 (K); max_seconds = 60; [solver.options] free table
@@ -113,6 +114,9 @@ struct CaseConfig {
   /// table); set by the parser.
   ResolutionChoice resolution = ChooseResolution(0.02, DefaultResolutionTable());
   double sample_spacing_mm = 0.3;
+  /// [accuracy] region_of_interest: the search's oracles model only the triangles of each jaw
+  /// that can come within reach of the other over the bounds (collision/region_of_interest.h).
+  bool region_of_interest = true;
 
   double contact_band_mm = 0.1;
   double max_penetration_mm = 0.05;

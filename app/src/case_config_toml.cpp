@@ -134,6 +134,13 @@ std::optional<std::int64_t> Table::Integer(const std::string& key, std::int64_t 
   return v;
 }
 
+std::optional<bool> Table::Bool(const std::string& key) const {
+  const toml::node* n = Node(key);
+  if (n == nullptr) return std::nullopt;
+  if (!n->is_boolean()) Fail(key, "must be true or false, got " + TypeName(*n));
+  return n->as_boolean()->get();
+}
+
 std::optional<std::string> Table::String(const std::string& key) const {
   const toml::node* n = Node(key);
   if (n == nullptr) return std::nullopt;

@@ -38,6 +38,7 @@ class Table {
                                bool hi_open, const std::string& rule) const;
   std::optional<std::int64_t> Integer(const std::string& key, std::int64_t lo, std::int64_t hi) const;
   std::optional<std::string> String(const std::string& key) const;
+  std::optional<bool> Bool(const std::string& key) const;
   std::optional<std::vector<std::string>> StringArray(const std::string& key) const;
   /// An array of exactly `n` finite numbers.
   std::optional<std::vector<double>> NumberArray(const std::string& key, std::size_t n,

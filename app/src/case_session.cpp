@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "jaw_checks.h"
 #include "memory_guard.h"
+#include "occlude/collision/region_of_interest.h"
 #include "occlude/collision/voxel_grid.h"
 
 namespace occlude::app {
@@ -16,6 +17,9 @@ namespace {
 // The map fields use coarse voxels: Exact() is exact at any voxel size, and a coarse grid
 // keeps the search for a 1 mm reach to a few voxels per vertex.
 constexpr double kMapVoxelMm = 0.4;
+
+// A region keeping at least this share of a jaw's triangles is not worth a cut (session_region.h).
+constexpr double kWholeAboveShare = 0.95;
 
 collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
   collision::VoxelizeOptions options;
@@ -94,6 +98,24 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
 
 Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }
 
+std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+                                                               std::shared_ptr<const io::TriangleMesh> upper_U,
+                                                               const collision::OracleOptions& options,
+                                                               const std::string& what) {
+  StepClock clock;
+  clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
+  try {
+    return std::make_unique<collision::JawOracle>(std::move(lower_L), std::move(upper_U), options);
+  } catch (const collision::VoxelizeError& e) {
+    throw UserError(config_.file.string() + ": accuracy: " + e.what());
+  }
+}
+
+collision::RegionOfInterestRequest CaseSession::RegionRequest(double band_mm) const {
+  const Eigen::Isometry3d X_start = ConfigStartPose();
+  return SessionRegionRequest(config_, X_start, X_start * pivot_L_, band_mm);
+}
+
 const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
   const std::vector<double> voxels = ScheduleVoxels(config_);
   if (oracles_.empty()) oracles_.resize(voxels.size());
@@ -101,14 +123,33 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
     collision::OracleOptions base;
     base.sample_spacing_mm = config_.sample_spacing_mm;
     base.arch = arch_;
-    StepClock clock;
-    clock.Start("built the " + Mm(voxels[index]) + " mm contact oracle");
-    try {
-      oracles_[index] = std::make_unique<collision::JawOracle>(
-          jaws_.lower_L, jaws_.upper_U, planner::StageOracleOptions(base, voxels, index));
-    } catch (const collision::VoxelizeError& e) {
-      throw UserError(config_.file.string() + ": accuracy: " + e.what());
+    const collision::OracleOptions options = planner::StageOracleOptions(base, voxels, index);
+    OracleModel model{options.voxel_size_mm, std::nullopt, 0, 0.0};
+    if (!config_.region_of_interest) {
+      oracles_[index] = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, "");
+    } else {
+      const collision::RegionOfInterest roi = collision::ComputeRegionOfInterest(
+          jaws_.lower_L, jaws_.upper_U, RegionRequest(SessionReadRadiusMm(config_, options)));
+      // A jaw that keeps nearly everything is modelled whole (the cut would save little and
+      // cost a copy of the mesh), and so is one that keeps nothing (jaws out of each other's
+      // reach: an oracle needs a surface).
+      auto pick = [](const collision::RegionMesh& sub, const std::shared_ptr<const io::TriangleMesh>& whole) {
+        const auto kept = static_cast<double>(sub.mesh->num_triangles());
+        return sub.mesh->empty() || kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles()) ? whole
+                                                                                                           : sub.mesh;
+      };
+      const auto lower = pick(roi.lower, jaws_.lower_L), upper = pick(roi.upper, jaws_.upper_U);
+      model.lower_cut = lower != jaws_.lower_L;
+      model.upper_cut = upper != jaws_.upper_U;
+      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats)
+                << (model.lower_cut || model.upper_cut ? "" : "; too little to cut: modelling the whole jaws") << "\n";
+      oracles_[index] = BuildOracle(lower, upper, options, " on the region of interest");
+      model.region = roi.stats;
+      model.build_seconds = roi.stats.seconds;
     }
+    model.bytes = oracles_[index]->MemoryBytes();
+    model.build_seconds += oracles_[index]->build_seconds();
+    models_.push_back(model);
   }
   return *oracles_[index];
 }
@@ -124,7 +165,28 @@ const planner::OracleSchedule& CaseSession::Schedule() {
   return stages_;
 }
 
-const collision::JawOracle& CaseSession::FinestOracle() { return Oracle(ScheduleVoxels(config_).size() - 1); }
+const collision::JawOracle& CaseSession::FinestOracle() {
+  const std::size_t last = ScheduleVoxels(config_).size() - 1;
+  if (!config_.region_of_interest) return Oracle(last);
+  if (!whole_finest_) {
+    collision::OracleOptions base;
+    base.sample_spacing_mm = config_.sample_spacing_mm;
+    base.arch = arch_;
+    const collision::OracleOptions options = planner::StageOracleOptions(base, ScheduleVoxels(config_), last);
+    whole_finest_ = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, " on the whole jaws");
+    models_.push_back({options.voxel_size_mm, std::nullopt, whole_finest_->MemoryBytes(), whole_finest_->build_seconds()});
+  }
+  return *whole_finest_;
+}
+
+const collision::JawOracle& CaseSession::FinestOracleAt(const Eigen::Isometry3d& X_LU) {
+  if (!config_.region_of_interest || whole_finest_) return FinestOracle();
+  const double displacement = collision::MaxDisplacementMm(*jaws_.upper_U, RegionRequest(0.0));
+  if (collision::RegionCoversPose(*jaws_.upper_U, ConfigStartPose(), X_LU, displacement)) {
+    return Oracle(ScheduleVoxels(config_).size() - 1);
+  }
+  return FinestOracle();
+}
 
 const MapFields& CaseSession::Maps() {
   if (!maps_) {
@@ -134,6 +196,22 @@ const MapFields& CaseSession::Maps() {
   }
   return *maps_;
 }
+
+namespace {
+
+// The inputs of a session's region of interest besides the models' (start pose, bounds, locks,
+// the bands: session_region.h).
+bool SameRegionInputs(const CaseConfig& a, const CaseConfig& b) {
+  for (std::size_t d = 0; d < kNumDofs; ++d) {
+    if (a.bounds[d].min != b.bounds[d].min || a.bounds[d].max != b.bounds[d].max) return false;
+  }
+  return a.locked == b.locked && a.start.matrix == b.start.matrix &&
+         a.start.params.translation_mm == b.start.params.translation_mm &&
+         a.start.params.rotation_deg == b.start.params.rotation_deg && a.contact_band_mm == b.contact_band_mm &&
+         a.max_penetration_mm == b.max_penetration_mm && a.report.map_max_mm == b.report.map_max_mm;
+}
+
+}  // namespace
 
 bool CaseSession::Reusable(const CaseConfig& other) const {
   auto same_files = [](const std::optional<JawFiles>& a, const std::optional<JawFiles>& b) {
@@ -147,7 +225,8 @@ bool CaseSession::Reusable(const CaseConfig& other) const {
   return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) && same_synthetic &&
          config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
          ScheduleVoxels(config_) == ScheduleVoxels(other) && config_.sample_spacing_mm == other.sample_spacing_mm &&
-         config_.start.pivot_mm == other.start.pivot_mm;
+         config_.start.pivot_mm == other.start.pivot_mm && config_.region_of_interest == other.region_of_interest &&
+         (!config_.region_of_interest || oracles_.empty() || SameRegionInputs(config_, other));
 }
 
 }  // namespace occlude::app

@@ -19,6 +19,7 @@
 #include "occlude/planner/request.h"
 #include "progress.h"
 #include "report_case.h"
+#include "session_region.h"
 
 namespace occlude::app {
 
@@ -53,10 +54,20 @@ class CaseSession {
   /// The start pose of the config about pivot_L().
   Eigen::Isometry3d ConfigStartPose() const;
 
-  /// The planner's schedule (built on first use): ScheduleVoxels sub-voxel stages.
+  /// The planner's schedule (built on first use): ScheduleVoxels sub-voxel stages. With
+  /// [accuracy] region_of_interest (the default) each oracle models only the region of
+  /// interest of a search from ConfigStartPose() within the config's bounds, which answers as
+  /// the whole jaws do at every pose of that search (collision/region_of_interest.h).
   const planner::OracleSchedule& Schedule();
-  /// The finest oracle of the schedule (the report's).
+  /// The finest oracle on the whole jaws, valid at any pose (without region_of_interest, the
+  /// schedule's finest).
   const collision::JawOracle& FinestOracle();
+  /// The finest oracle valid at X_LU: the whole-jaw one when already built, else the
+  /// schedule's finest when its region covers X_LU (every upper vertex within the region's
+  /// displacement of its place at the start pose), else FinestOracle().
+  const collision::JawOracle& FinestOracleAt(const Eigen::Isometry3d& X_LU);
+  /// The oracles built so far, in build order (for the report's settings).
+  const std::vector<OracleModel>& Models() const { return models_; }
   const MapFields& Maps();
 
   /// True when `other` can reuse this session's models (same meshes, units, up axis, voxel
@@ -76,6 +87,14 @@ class CaseSession {
   planner::OracleSchedule stages_;
   const collision::JawOracle& Oracle(std::size_t index);
   std::unique_ptr<MapFields> maps_;
+  // Region of interest (session_region.h): the whole-jaw finest oracle when asked for, and
+  // what every oracle built holds.
+  std::unique_ptr<collision::JawOracle> whole_finest_;
+  std::vector<OracleModel> models_;
+  std::unique_ptr<collision::JawOracle> BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+                                                    std::shared_ptr<const io::TriangleMesh> upper_U,
+                                                    const collision::OracleOptions& options, const std::string& what);
+  collision::RegionOfInterestRequest RegionRequest(double band_mm) const;
 };
 
 }  // namespace occlude::app

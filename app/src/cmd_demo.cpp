@@ -29,6 +29,7 @@ struct DemoArgs {
   std::size_t triangles = 20000;
   std::uint32_t seed = 1;
   double voxel_mm = 0.2;
+  bool voxel_given = false;  ///< --voxel also sets the search's finest voxel (else picked for 0.02 mm)
   double delta_mm = 0.1;
   int reps = 30;
   std::string out = "out/demo";
@@ -43,7 +44,7 @@ std::string DemoConfig(const DemoArgs& args) {
     << "# identity). Edit [adjust] and run `occlude refine` on this file to carry on.\n"
     << "[case]\nname = \"synthetic demo\"\nup_axis = \"+y\"\n"
     << "[synthetic]\ntriangles = " << args.triangles << "\nseed = " << args.seed << "\n"
-    << "[accuracy]\naccuracy_mm = 0.02\n"
+    << "[accuracy]\n" << (args.voxel_given ? "voxel_mm = " + std::to_string(args.voxel_mm) : std::string("accuracy_mm = 0.02")) << "\n"
     << "[contact]\nband_mm = " << args.delta_mm << "\nmax_penetration_mm = 0.05\n"
     << "[solver]\nname = \"auto\"\nstarts = 8\nseed = " << args.seed << "\nproposals = 3\n"
     << "[start]\ntranslation_mm = [0.9, 1.2, -0.6]\nrotation_deg = [1.0, -1.5, 0.8]\n"
@@ -139,7 +140,10 @@ void AddDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
   cmd->add_option("--triangles", args->triangles, "Triangle budget per jaw")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Generator seed")->capture_default_str();
-  cmd->add_option("--voxel", args->voxel_mm, "Voxel size of the --sweep, mm")->capture_default_str()
+  cmd->add_option("--voxel", args->voxel_mm,
+                  "Voxel size of the --sweep and, when given, of the search's finest oracle (default: "
+                  "picked for 0.02 mm accuracy), mm")
+      ->capture_default_str()
       ->check(PositiveMm());
   cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
       ->check(BandMm());
@@ -149,7 +153,10 @@ void AddDemoCommand(CLI::App& app) {
   cmd->add_flag("--sweep", args->sweep,
                 "Also time the sphere-tree queries along the occlusal axis through the bite (demo.txt, demo.json)");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
-  cmd->callback([args] { RunDemo(*args); });
+  cmd->callback([cmd, args] {
+    args->voxel_given = cmd->count("--voxel") > 0;
+    RunDemo(*args);
+  });
 }
 
 }  // namespace occlude::app

@@ -225,9 +225,10 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   a.params = planner::DecomposePose(X_LU, session.pivot_L(), Eigen::Isometry3d::Identity());
 
   double t0 = NowSeconds();
-  const collision::JawOracle& oracle = session.FinestOracle();
+  const collision::JawOracle& oracle = session.FinestOracleAt(X_LU);
   const MapFields& maps = session.Maps();
   a.timings_s.emplace_back("models (built once per session)", NowSeconds() - t0);
+  a.models = session.Models();
 
   t0 = NowSeconds();
   collision::OracleRequest request;

@@ -52,6 +52,7 @@ struct ReportAnalysis {
   std::vector<float> upper_vertex_mm;  ///< per upper vertex: signed distance to the lower
   double reach_mm = 1.0;
   std::vector<std::pair<std::string, double>> timings_s;  ///< step -> wall seconds
+  std::vector<OracleModel> models;  ///< the session's oracles (region of interest, bytes, build time)
 };
 
 /// Evaluates the pose on the session's finest oracle and map fields (built on first use:

@@ -51,7 +51,21 @@ json Settings(const CaseConfig& c, const ReportAnalysis& a) {
     bounds[std::string(DofName(d)) + (d < 3 ? "_mm" : "_deg")] = json::array({b.min, b.max});
     if (c.locked[static_cast<std::size_t>(d)]) locked.push_back(DofName(d));
   }
+  json oracles = json::array();  // the session's oracles: how much of the jaws each models
+  for (const OracleModel& m : a.models) {
+    json o = {{"voxel_mm", m.voxel_mm}, {"bytes", m.bytes}, {"build_s", m.build_seconds}, {"region_of_interest", false}};
+    if (m.region) {
+      o["region_of_interest"] = {{"reach_mm", m.region->reach_mm},           {"band_mm", m.region->band_mm},
+                                 {"displacement_mm", m.region->displacement_mm}, {"lower_kept", m.region->lower_kept},
+                                 {"lower_total", m.region->lower_total},     {"upper_kept", m.region->upper_kept},
+                                 {"upper_total", m.region->upper_total},     {"select_s", m.region->seconds},
+                                 {"lower_cut", m.lower_cut},                  {"upper_cut", m.upper_cut}};
+    }
+    oracles.push_back(o);
+  }
   return {{"units", std::string(io::LengthUnitName(c.units))},
+          {"region_of_interest", c.region_of_interest},
+          {"oracles", oracles},
           {"accuracy_mm", c.accuracy_mm},
           {"voxel_mm", a.voxel_mm},
           {"oracle_level", collision::ToString(a.oracle.level)},

@@ -3,6 +3,7 @@
 // and the arch frame.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -207,6 +208,19 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
         voxel_sphere_U_[v] = Eigen::Vector4f(o.x(), o.y(), o.z(), Radius(sample_offset_U_, vb, ve, o));
       }
     }
+  }
+  // The samples' bounding sphere (box centre, farthest sample), for CountNestedCells.
+  if (!sample_p_U_.empty()) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Eigen::Vector3f& p : sample_p_U_) {
+      lo = lo.cwiseMin(p.cast<double>());
+      hi = hi.cwiseMax(p.cast<double>());
+    }
+    samples_centre_U_ = 0.5 * (lo + hi);
+    for (const Eigen::Vector3f& p : sample_p_U_) {
+      samples_radius_ = std::max(samples_radius_, (p.cast<double>() - samples_centre_U_).norm());
+    }
+    samples_radius_ += 1e-6;  // float storage of the samples
   }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
   for (const auto& part : up.parts) {

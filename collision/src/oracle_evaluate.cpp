@@ -31,6 +31,28 @@ void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) co
   if (IsInterior(lower_.grid(), p_L)) ++result->deep_samples;
 }
 
+void JawOracle::CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const {
+  const VoxelGrid& grid = lower_.grid();
+  if (grid.interior_runs.empty() || sample_p_U_.empty()) return;  // no closed lower component
+  // Outside the lower grid's box entirely: nothing can be inside.
+  const Eigen::Vector3d c_L = X_LU * samples_centre_U_;
+  const Eigen::Vector3d box_lo = grid.origin_F, box_hi = grid.origin_F + grid.voxel_size_mm * grid.dims.cast<double>();
+  const Eigen::Vector3d gap = (box_lo - c_L).cwiseMax(c_L - box_hi).cwiseMax(0.0);
+  if (gap.norm() > samples_radius_) return;
+  const int level = std::min(options_.cell_level, upper_.octree().top_level);
+  const std::uint32_t begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
+  const std::uint32_t end = upper_.octree().level_end[static_cast<std::size_t>(level)];
+  for (std::uint32_t n = begin; n < end; ++n) {
+    const std::uint32_t first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
+    if (first == last) continue;
+    // Every sample is farther than the reach from the lower surface (no cell was found), so
+    // its voxel's class is its side; the cell's upper surface cannot cross the lower surface
+    // without coming within the reach, so its samples share its first sample's side (unless
+    // the upper surface is in several pieces within one cell).
+    if (IsInterior(grid, X_LU * sample_p_U_[first].cast<double>())) result->deep_samples += last - first;
+  }
+}
+
 void JawOracle::Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
                            std::int32_t part, const OracleRequest& request, OracleResult* result) const {
   PartTotals& pt = result->parts[static_cast<std::size_t>(part)];

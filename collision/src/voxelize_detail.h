@@ -115,4 +115,8 @@ void BuildProximity(const io::TriangleMesh& mesh, const GridFrame& frame, int la
 void BuildInterior(const io::TriangleMesh& mesh, const GridFrame& frame, VoxelGrid* grid,
                    VoxelizeStats* stats);
 
+/// Per triangle, the closed component it belongs to as the interior stage finds them (dense
+/// ids), or -1 when its component is open: for cutting a mesh without opening a closed one.
+std::vector<std::int32_t> ClosedComponentOfTriangle(const io::TriangleMesh& mesh);
+
 }  // namespace occlude::collision::detail

@@ -424,6 +424,15 @@ bool RunsContain(const std::vector<VoxelRun>& runs, std::int32_t x, std::int32_t
   return r.z == z && r.y == y && x < r.x_end;
 }
 
+std::vector<std::int32_t> ClosedComponentOfTriangle(const io::TriangleMesh& mesh) {
+  const Components c = FindComponents(mesh);
+  std::vector<std::int32_t> closed(c.of_triangle.size(), -1);
+  for (std::size_t t = 0; t < closed.size(); ++t) {
+    if (c.closed[static_cast<std::size_t>(c.of_triangle[t])]) closed[t] = c.of_triangle[t];
+  }
+  return closed;
+}
+
 void BuildInterior(const io::TriangleMesh& mesh, const GridFrame& frame, VoxelGrid* grid,
                    VoxelizeStats* stats) {
   const Components comps = FindComponents(mesh);

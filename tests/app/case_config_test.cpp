@@ -64,6 +64,12 @@ TEST_F(CaseConfigTest, DefaultsWithOnlyTheMeshes) {
   EXPECT_FALSE(c.start.matrix.has_value());
   for (bool locked : c.locked) EXPECT_FALSE(locked);
   EXPECT_FALSE(c.memory_budget_mb.has_value());
+  EXPECT_TRUE(c.region_of_interest);
+}
+
+TEST_F(CaseConfigTest, RegionOfInterestCanBeTurnedOff) {
+  EXPECT_FALSE(Load(kFiles + "[accuracy]\nregion_of_interest = false\n").region_of_interest);
+  EXPECT_TRUE(Load(kFiles + "[accuracy]\nregion_of_interest = true\n").region_of_interest);
 }
 
 TEST_F(CaseConfigTest, EveryKeyIsRead) {
@@ -260,6 +266,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"translation_not_3", kFiles + "[start]\ntranslation_mm = [0, 1]\n", {"start.translation_mm", "[x, y, z]"}},
         BadConfig{"bad_units", kFiles + "[case]\nunits = \"furlong\"\n", {"case.units", "furlong", "mm, cm"}},
         BadConfig{"bad_up_axis", kFiles + "[case]\nup_axis = \"w\"\n", {"case.up_axis", "not an axis"}},
+        BadConfig{"region_of_interest_not_bool", kFiles + "[accuracy]\nregion_of_interest = 1\n",
+                  {"accuracy.region_of_interest", "true or false"}},
+        BadConfig{"region_of_interest_misspelt", kFiles + "[accuracy]\nregion_of_intrest = false\n",
+                  {"accuracy.region_of_intrest: unknown key", "'accuracy.region_of_interest'"}},
         BadConfig{"memory_budget_not_positive", kFiles + "[limits]\nmemory_budget_mb = 0\n",
                   {"limits.memory_budget_mb", "positive number of megabytes"}},
         BadConfig{"unknown_limit", kFiles + "[limits]\nmemory_mb = 10\n",

@@ -280,14 +280,11 @@ TEST(OracleRobustness, PartlyNestedJawsReportPenetration) {
   }
 }
 
-// KNOWN GAP, found by this suite and left to the oracle's owners: the broad
-// phase only reaches upper cells within its reach of the lower's surface, so an
-// upper jaw wholly inside the lower, farther than that from the surface, gives
-// no contact, no penetration and no deep samples: the same answer as jaws far
-// apart, which a planner would take for a free pose. Enable once the oracle
-// classifies such an upper (e.g. one upper point against the lower's Interior
-// voxels when no cell is found).
-TEST(OracleRobustness, DISABLED_FullyNestedJawsAreReportedAsInterpenetrating) {
+// An upper jaw wholly inside a closed lower, farther than the oracle's reach from its
+// surface (no upper cell is found), still counts as interpenetrating: its samples are
+// classified against the lower's Interior voxels (JawOracle::CountNestedCells), so a
+// planner never takes it for a free pose like jaws far apart.
+TEST(OracleRobustness, FullyNestedJawsAreReportedAsInterpenetrating) {
   const Nested& n = NestedSpheres();
   int i = 0;
   for (const Eigen::Isometry3d& X : InsidePoses(kPoses, 15)) {

@@ -168,6 +168,10 @@ class JawOracle {
                   std::int32_t part, const OracleRequest& request, OracleResult* result) const;
   /// An unknown sample (outside the field's band, or no triangle within reach).
   void CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const;
+  // No upper cell came within reach of the lower surface: the upper lies wholly outside the
+  // lower or (parts of it) wholly inside a closed lower component. One interior test per
+  // cell centre tells which; the samples of the cells inside count as deep.
+  void CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
 
   OracleOptions options_;
   SphereTree lower_, upper_;
@@ -192,6 +196,9 @@ class JawOracle {
   // samples' bounding box in U and their largest distance from it (0: none).
   std::vector<Eigen::Vector3f> cell_center_U_;
   std::vector<float> cell_radius_;
+  // A sphere holding every upper sample (centre in U, radius): rules out nesting at once.
+  Eigen::Vector3d samples_centre_U_ = Eigen::Vector3d::Zero();
+  double samples_radius_ = 0.0;
   std::vector<bool> part_is_anterior_tooth_;  ///< known from tooth numbers
   std::vector<bool> part_has_tooth_;
   double build_seconds_ = 0.0;

@@ -1,0 +1,131 @@
+// The region of interest of a jaw pair: the parts of each jaw that can come near the other
+// anywhere over a pose search, so that the oracles model only those (crowns near the occlusal
+// plane) and not the base, the palate or the gingiva far from the bite.
+//
+// The reach. The search moves the upper jaw from the start pose X_LU_start by parameters
+// within per-DOF bounds: q' = pivot_L + t + Rot(w) (q - pivot_L) for an upper point q (in L at
+// the start pose), |t_i| <= T_i, |w_i| <= W_i (planner::ComposePose). So
+//   |q' - q| <= |t| + |(Rot(w) - I)(q - pivot_L)| = |t| + 2 sin(|w| / 2) |q - pivot_L|
+//           <= |T| + 2 sin(min(|W|, pi) / 2) max_q |q - pivot_L| =: D,
+// with T, W the per-DOF bounds' largest magnitudes (0 for locked DOFs) and the maximum over
+// the upper's vertices (the farthest point of a triangle from a point is a corner). D is a
+// sound upper bound of any upper point's displacement over the bounds. Given `band_mm`, the
+// farthest any query reads the other jaw's surface around a point (OracleReadRadiusMm), the
+// reach is R = band + D: a triangle of either jaw farther than R from the other jaw at the
+// start pose is farther than `band` from it at every pose within the bounds, so no query at
+// such a pose reads it (or, for an upper triangle, its samples read nothing).
+//
+// Selection. A triangle is kept unless it is proved farther than R from the other jaw's
+// surface at the start pose: the other jaw is voxelized in L (coarse voxels,
+// RegionOfInterestRequest::voxel_size_mm) and its DistanceBound (a lower bound of the distance
+// to its voxel cubes, which hold its surface) is read at the triangle's bounding-sphere centre.
+// One O(1) probe per triangle, never triangle pairs. Conservative: triangles a little beyond R
+// (up to the bound's slack, about a fifth of R plus a voxel diagonal) may be kept; none
+// within R is dropped; a reach beyond what the bound certifies (60 mm at 0.5 mm voxels) keeps
+// everything. A closed component of the lower jaw (as Voxelize's interior stage finds them:
+// a tooth shell, a closed model) is kept whole when any of its triangles is kept: the oracle
+// reads the lower's interior (deep samples, and its culls of unknown cells) and a cut would
+// open it. The upper's interior is never read, so the upper is cut freely.
+//
+// Open borders (contract). Cutting leaves open borders, each farther than R from the other
+// jaw at the start pose (it is an edge of a dropped triangle), so farther than `band` from
+// every point of the other jaw at every pose within the bounds: no query reads a closest
+// point on a cut, so the signed-distance rule for open borders (signed_distance.h: outside)
+// never applies there, and the lower's closed components (its interior) are as in the whole
+// jaw. Hence, at every pose within the bounds, an oracle built on the two sub-meshes (with the
+// whole jaws' arch frame) gives the same contacts, penetrations, deep samples, minimum
+// distance (within the band the query makes exact) and per-part totals as one built on the
+// whole jaws, up to float rounding: the sub-meshes' grids share the lattice of the whole ones
+// but not their origin, so samples are grouped into other cells and their float offsets from
+// the cell centres round differently.
+//
+// Frames and units: lower in L, upper in U, mm; bounds in mm and degrees.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "occlude/collision/oracle.h"
+#include "occlude/io/triangle_mesh.h"
+
+namespace occlude::collision {
+
+struct RegionOfInterestRequest {
+  /// Start pose of U in L; the bounds are about it.
+  Eigen::Isometry3d X_LU_start = Eigen::Isometry3d::Identity();
+  /// Rotation pivot in L at the start pose.
+  Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();
+  /// Per-DOF bounds relative to the start pose, order tx, ty, tz (mm, in L), rx, ry, rz (deg,
+  /// rotation vector in L about the pivot), as planner::PlanRequest's lower/upper bounds.
+  std::array<double, 6> bound_min{{-3, -3, -3, -5, -5, -5}};
+  std::array<double, 6> bound_max{{3, 3, 3, 5, 5, 5}};
+  /// Locked DOFs stay at the start value (their bounds are ignored).
+  std::array<bool, 6> locked{};
+  /// The farthest any query reads the other jaw around a point of its own jaw (mm, >= 0):
+  /// OracleReadRadiusMm of the widest oracle that will be built on the region.
+  double band_mm = 3.0;
+  /// Voxel size of the selection's distance bounds (mm, > 0): smaller is tighter near the
+  /// jaws and costs more; the bound's slack at distance R is about R / 5 either way.
+  double voxel_size_mm = 0.5;
+};
+
+/// One jaw cut down to the region: its triangles (in the whole mesh's order), their vertices
+/// plus the whole mesh's extreme vertices along each axis, unused when not kept (so that
+/// Voxelize, which frames its grid by the vertices' bounds, gives the sub-mesh the whole mesh's
+/// grid frame), and every part of the whole mesh (so part indices and tooth numbers are
+/// unchanged).
+struct RegionMesh {
+  std::shared_ptr<const io::TriangleMesh> mesh;
+  std::vector<std::uint32_t> original_triangle;  ///< sub-mesh triangle -> whole-mesh triangle
+};
+
+struct RegionOfInterestStats {
+  double band_mm = 0.0;          ///< as requested
+  double displacement_mm = 0.0;  ///< D: the largest displacement of an upper point over the bounds
+  double reach_mm = 0.0;         ///< R = band + D
+  std::size_t lower_kept = 0, lower_total = 0;  ///< triangles
+  std::size_t upper_kept = 0, upper_total = 0;
+  double seconds = 0.0;  ///< wall time of the selection
+};
+
+struct RegionOfInterest {
+  RegionMesh lower;  ///< in L
+  RegionMesh upper;  ///< in U
+  RegionOfInterestStats stats;
+};
+
+/// D of the header comment for the upper jaw (frame U) at request.X_LU_start. Throws
+/// std::invalid_argument for non-finite bounds, pose or pivot.
+double MaxDisplacementMm(const io::TriangleMesh& upper_U, const RegionOfInterestRequest& request);
+
+/// Selects the region of interest (see the header comment). Throws std::invalid_argument for
+/// a null mesh, a negative or non-finite band, a non-positive voxel size or bad bounds.
+RegionOfInterest ComputeRegionOfInterest(std::shared_ptr<const io::TriangleMesh> lower_L,
+                                         std::shared_ptr<const io::TriangleMesh> upper_U,
+                                         const RegionOfInterestRequest& request);
+
+/// The farthest (mm) a JawOracle built with `options` reads the lower jaw around an upper
+/// sample (or the lower jaw's surface voxels, its field corners' closest points and their
+/// pseudo-normals), at every accuracy level, for requests whose exact-level search reach
+/// (max of contact band, penetration search and residual band) is at most `exact_reach_mm`:
+///   sqrt(3) s max(k + 3, ceil(exact_reach / s) + 2), s = voxel size, k = field dilation.
+/// Sub-voxel: the sample's band voxel is decided by the surface voxels within k voxels per
+/// axis (their cubes within sqrt(3) (k + 1) s of the sample), a corner's closest point is
+/// within sqrt(3) (k + 1) s of the corner (a surface voxel within k of its voxel holds a
+/// surface point), the corner within sqrt(3) s of the sample: sqrt(3) (k + 2) s. Voxel level:
+/// the voxel centroid stands up to sqrt(3) s off the surface: + sqrt(3) s. Exact level:
+/// NarrowBandSdf::Exact scans the surface voxels within ceil(reach / s) + 1 voxels.
+double OracleReadRadiusMm(const OracleOptions& options, double exact_reach_mm);
+
+/// True when every upper vertex (frame U) is displaced by at most `displacement_mm` between
+/// X_LU_start and X_LU (exact over the vertices): the poses a region of that displacement
+/// answers for, whether or not they lie within the bounds it was computed for.
+bool RegionCoversPose(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU_start,
+                      const Eigen::Isometry3d& X_LU, double displacement_mm);
+
+}  // namespace occlude::collision
