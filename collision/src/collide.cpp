@@ -201,7 +201,8 @@ struct Slab {
 
 Slab SlabOf(const Side& s, std::uint32_t node) {
   const ExplicitNode& rec = s.ex[node];
-  return {s.DirToA(Eigen::Vector3d(rec.nx, rec.ny, rec.nz)), rec.slab_lo, rec.slab_hi};
+  return {s.DirToA(Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny), static_cast<double>(rec.nz))),
+          static_cast<double>(rec.slab_lo), static_cast<double>(rec.slab_hi)};
 }
 
 // True when node q (sphere c_q, r_q and slab sq) lies entirely outside node p's

@@ -62,7 +62,7 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
     rec.nx = static_cast<float>(unit.x());
     rec.ny = static_cast<float>(unit.y());
     rec.nz = static_cast<float>(unit.z());
-    normal[node] = Eigen::Vector3d(rec.nx, rec.ny, rec.nz);
+    normal[node] = Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny), static_cast<double>(rec.nz));
   }
   const double h = 0.5 * grid.voxel_size_mm;
   for (std::size_t v = 0; v < grid.num_surface(); ++v) {
