@@ -1,10 +1,7 @@
-// Case folders and the machine line (see case_folder.h).
+// Case folders (see case_folder.h).
 #include "case_folder.h"
 
-#include <fstream>
 #include <iostream>
-#include <sstream>
-#include <thread>
 
 #include "commands.h"
 #include "occlude/io/mesh_io.h"
@@ -25,15 +22,6 @@ std::shared_ptr<const io::TriangleMesh> LoadJaw(const std::filesystem::path& fil
   } catch (const io::MeshError& e) {
     throw UserError(e.what());
   }
-}
-
-std::string FirstLine(const char* file, const std::string& prefix) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (prefix.empty() || line.rfind(prefix, 0) == 0) return line;
-  }
-  return "";
 }
 
 }  // namespace
@@ -60,17 +48,6 @@ JawPairCase SyntheticJawPairCase(std::size_t triangles, std::uint32_t seed) {
   c.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
   c.X_LU_ref = jaws.X_LU;
   return c;
-}
-
-std::string MachineDescription() {
-  std::string cpu = FirstLine("/proc/cpuinfo", "model name");
-  const auto colon = cpu.find(':');
-  cpu = colon == std::string::npos ? std::string("unknown CPU") : cpu.substr(colon + 2);
-  std::istringstream load(FirstLine("/proc/loadavg", ""));
-  std::string load1;
-  load >> load1;
-  return std::to_string(std::thread::hardware_concurrency()) + " cores (" + cpu + "), load " +
-         (load1.empty() ? "?" : load1) + " at start";
 }
 
 }  // namespace occlude::app

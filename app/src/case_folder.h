@@ -1,6 +1,6 @@
 // Case folders as the measuring commands (validate, and later bench) take them:
 // `DIR/upper.stl` and `DIR/lower.stl` in one frame at the registered bite, or
-// the generated synthetic pair; and the machine line stated with every figure.
+// the generated synthetic pair. (The machine line stated with every figure: MachineLine, bench_inputs.h.)
 #pragma once
 
 #include <Eigen/Geometry>
@@ -25,7 +25,5 @@ JawPairCase LoadCaseFolder(const std::filesystem::path& dir);
 /// The synthetic pair with `triangles` per jaw (seed), upper in U at its designed bite.
 JawPairCase SyntheticJawPairCase(std::size_t triangles, std::uint32_t seed);
 
-/// "2 cores (CPU model), load 1.23 at start": the machine, stated with every figure.
-std::string MachineDescription();
 
 }  // namespace occlude::app

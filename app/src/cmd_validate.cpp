@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench_inputs.h"
 #include "case_folder.h"
 #include "commands.h"
 #include "output_files.h"
@@ -57,7 +58,7 @@ void RunValidateCommand(const ValidateArgs& args) {
   PrepareOutputDir(args.out);
   const JawPairCase jaws =
       args.case_dir.empty() ? SyntheticJawPairCase(args.synthetic, args.seed) : LoadCaseFolder(args.case_dir);
-  const std::string machine = MachineDescription();
+  const std::string machine = MachineLine();
   std::cerr << "validate: case " << jaws.name << ", " << options.solvers.size() << " solvers x "
             << options.magnitudes.size() << " magnitudes x " << options.starts << " starts; " << machine << "\n";
   const ValidateResult result = RunValidation(jaws, options);
