@@ -77,7 +77,7 @@ TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrors) {
   }
   ASSERT_EQ(r.summary.size(), 4u);
   for (const ValidateSummary& s : r.summary) {
-    EXPECT_EQ(s.runs, 3);
+    EXPECT_EQ(s.runs, options.starts);
     EXPECT_DOUBLE_EQ(s.success_rate, 1.0);
     EXPECT_LE(s.median_err_mm, s.p95_err_mm);
     EXPECT_LE(s.median_consensus_mm, options.success_mm);
