@@ -15,6 +15,7 @@
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "text_format.h"
 
 namespace occlude::app {
 namespace {
@@ -26,12 +27,6 @@ constexpr SphereMode kModes[] = {SphereMode::kSimple, SphereMode::kOptimized,
 
 void Log(const BenchOptions& options, const std::string& line) {
   if (options.log) *options.log << "bench: " << line << std::endl;
-}
-
-std::string Fixed(double v, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
 }
 
 // Times `query(pose)` once per pose (thread CPU, microseconds); `record` sees

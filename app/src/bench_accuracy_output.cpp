@@ -11,20 +11,14 @@
 #include "bench_accuracy.h"
 #include "bench_accuracy_score.h"
 #include "chart.h"
+#include "text_format.h"
 
 namespace occlude::app {
 namespace {
 
-std::string Num(double v, int digits) {
-  if (!std::isfinite(v)) return "";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
-}
-
 std::string Fraction(std::size_t part, std::size_t whole) {
   return whole == 0 ? std::string()
-                    : Num(static_cast<double>(part) / static_cast<double>(whole), 5);
+                    : FixedOrEmpty(static_cast<double>(part) / static_cast<double>(whole), 5);
 }
 
 std::string VoxelLabel(double v) {
@@ -74,15 +68,15 @@ std::string AccuracyCsv(const std::vector<AccuracyRow>& rows, const std::string&
   for (const AccuracyRow& r : rows) {
     const bool c = r.contacts_defined;
     auto count = [&](std::size_t v) { return c ? std::to_string(v) : std::string(); };
-    csv << r.method << ',' << r.variant << ',' << Num(r.voxel_mm, 3) << ',' << r.level << ','
-        << Num(r.us.median, 2) << ',' << Num(r.p95_err_mm, 6) << ',' << Num(r.max_err_mm, 6) << ','
+    csv << r.method << ',' << r.variant << ',' << FixedOrEmpty(r.voxel_mm, 3) << ',' << r.level << ','
+        << FixedOrEmpty(r.us.median, 2) << ',' << FixedOrEmpty(r.p95_err_mm, 6) << ',' << FixedOrEmpty(r.max_err_mm, 6) << ','
         << count(r.missed) << ',' << count(r.false_contacts) << ',' << r.query << ','
-        << Num(r.p95_us, 2) << ',' << Num(r.us.max, 2) << ',' << Num(r.median_err_mm, 6) << ','
+        << FixedOrEmpty(r.p95_us, 2) << ',' << FixedOrEmpty(r.us.max, 2) << ',' << FixedOrEmpty(r.median_err_mm, 6) << ','
         << r.claims << ',' << r.unscored << ',' << count(r.truth_contacts) << ','
         << (c ? Fraction(r.missed, r.truth_contacts) : "") << ',' << count(r.truth_half) << ','
         << count(r.missed_half) << ',' << (c ? Fraction(r.false_contacts, r.claims) : "") << ','
-        << count(r.false_double) << ',' << Num(r.pen_err_median_mm, 6) << ','
-        << Num(r.pen_err_max_mm, 6) << ',' << r.poses << ',' << Num(r.build_s, 3) << ',' << r.bytes
+        << count(r.false_double) << ',' << FixedOrEmpty(r.pen_err_median_mm, 6) << ','
+        << FixedOrEmpty(r.pen_err_max_mm, 6) << ',' << r.poses << ',' << FixedOrEmpty(r.build_s, 3) << ',' << r.bytes
         << ',' << (r.pareto ? 1 : 0) << '\n';
   }
   return csv.str();

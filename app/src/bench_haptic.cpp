@@ -12,15 +12,10 @@
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "text_format.h"
 
 namespace occlude::app {
 namespace {
-
-std::string Fixed(double v, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
-}
 
 double Percentile(std::vector<double> sorted, double q) {
   if (sorted.empty()) return 0.0;

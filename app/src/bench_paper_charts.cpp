@@ -9,22 +9,10 @@
 #include <set>
 
 #include "chart.h"
+#include "text_format.h"
 
 namespace occlude::app {
 namespace {
-
-std::string Num(double v, int digits) {
-  if (!std::isfinite(v)) return "";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
-}
-
-std::string Short(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
 
 // A chart against the voxel size, log-log, one point label per voxel size.
 LineChart VoxelChart(const std::string& title, const std::string& subtitle,
@@ -79,8 +67,8 @@ void AddGuides(const PaperResult& r, LineChart* c, F&& value) {
 std::string FitText(const PaperResult& r, const std::string& prefix) {
   for (const PowerFit& f : r.fits) {
     if (f.what.rfind(prefix, 0) == 0 && f.points >= 2) {
-      return "fitted exponent " + Num(f.exponent, 2) + " for s in [" + Short(f.x_lo) + ", " +
-             Short(f.x_hi) + "] mm";
+      return "fitted exponent " + FixedOrEmpty(f.exponent, 2) + " for s in [" + ShortNumber(f.x_lo) + ", " +
+             ShortNumber(f.x_hi) + "] mm";
     }
   }
   return "";
@@ -101,7 +89,7 @@ void BuildCharts(const PaperResult& r, const std::string& sub,
     for (int i = 0; i < 3; ++i) {
       paper.x.push_back(PaperReference::kVoxel[i]);
       paper.y.push_back(PaperReference::kSurfaceVoxels[i]);
-      paper.labels.push_back(Short(PaperReference::kSurfaceVoxels[i]));
+      paper.labels.push_back(ShortNumber(PaperReference::kSurfaceVoxels[i]));
     }
     c.series.push_back(paper);
     ChartSeries dense = BuildSeries(r, "paper's dense grid on this mesh, n^3", 1,
@@ -176,8 +164,8 @@ void VolumeChart(const PaperResult& r, const std::string& sub,
   int color = 0;
   for (const double v : shown) {
     ChartSeries simple, optimized;
-    simple.name = "simple, " + Short(v) + " mm voxels";
-    optimized.name = "optimized, " + Short(v) + " mm voxels";
+    simple.name = "simple, " + ShortNumber(v) + " mm voxels";
+    optimized.name = "optimized, " + ShortNumber(v) + " mm voxels";
     simple.color = optimized.color = color++;
     optimized.dashed = true;
     for (const PaperLevelRow& l : r.levels) {
@@ -206,7 +194,7 @@ void SweepCharts(const PaperResult& r, const std::string& sub,
   }
   if (offsets.empty()) return;
   std::vector<std::string> labels;
-  for (const double o : offsets) labels.push_back(Short(o));
+  for (const double o : offsets) labels.push_back(ShortNumber(o));
   for (const char* query : {"boolean", "pairs"}) {
     LineChart c;
     c.title = std::string("Fig. 10: ") +
@@ -225,7 +213,7 @@ void SweepCharts(const PaperResult& r, const std::string& sub,
       int color = 0;
       for (const char* variant : {"simple", "optimized", "explicit"}) {
         ChartSeries s;
-        s.name = std::string("IST ") + variant + ", " + Short(*v) + " mm";
+        s.name = std::string("IST ") + variant + ", " + ShortNumber(*v) + " mm";
         s.color = color++;
         s.dashed = finer;
         for (const BenchRow& b : r.sweep) {

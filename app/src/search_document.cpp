@@ -1,5 +1,6 @@
 // The search's proposals and outliers as JSON and HTML (see search_document.h).
 #include "search_document.h"
+#include "text_format.h"
 
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -21,12 +22,6 @@ json Matrix(const Eigen::Matrix4d& m) {
 int ToothOfPart(const io::TriangleMesh* mesh, std::int32_t part) {
   if (mesh == nullptr || part < 0 || static_cast<std::size_t>(part) >= mesh->parts.size()) return 0;
   return mesh->parts[static_cast<std::size_t>(part)].tooth_number;
-}
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
 }
 
 }  // namespace

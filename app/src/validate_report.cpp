@@ -7,6 +7,7 @@
 
 #include "chart.h"
 #include "validate.h"
+#include "text_format.h"
 
 namespace occlude::app {
 namespace {
@@ -14,12 +15,6 @@ namespace {
 std::string MagnitudeLabel(const Magnitude& m) {
   std::ostringstream s;
   s << m.mm << " mm / " << m.deg << " deg";
-  return s.str();
-}
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
   return s.str();
 }
 
