@@ -24,6 +24,7 @@
 #include "report_writer.h"
 #include "search_document.h"
 #include "timing.h"
+#include "json_values.h"
 
 namespace occlude::app {
 namespace {
@@ -39,8 +40,6 @@ struct RefineArgs {
   double poll_seconds = 0.2;
   double memory_budget_mb = 0;
 };
-
-json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 json Metrics(const planner::PoseEvaluation& e) {
   return {{"contact_area_mm2", e.contact_area_mm2}, {"contact_samples", e.contact_samples},

@@ -7,19 +7,12 @@
 #include <sstream>
 
 #include "output_files.h"
+#include "json_values.h"
 
 namespace occlude::app {
 namespace {
 
 using nlohmann::json;
-
-json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
-
-json Matrix(const Eigen::Matrix4d& m) {
-  json rows = json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back(json::array({m(r, 0), m(r, 1), m(r, 2), m(r, 3)}));
-  return rows;
-}
 
 
 // How the voxel size and level were chosen (resolution_choice.h).

@@ -1,6 +1,7 @@
 // The search's proposals and outliers as JSON and HTML (see search_document.h).
 #include "search_document.h"
 #include "text_format.h"
+#include "json_values.h"
 
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -10,14 +11,6 @@ namespace occlude::app {
 namespace {
 
 using nlohmann::json;
-
-json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
-
-json Matrix(const Eigen::Matrix4d& m) {
-  json rows = json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back(json::array({m(r, 0), m(r, 1), m(r, 2), m(r, 3)}));
-  return rows;
-}
 
 int ToothOfPart(const io::TriangleMesh* mesh, std::int32_t part) {
   if (mesh == nullptr || part < 0 || static_cast<std::size_t>(part) >= mesh->parts.size()) return 0;
