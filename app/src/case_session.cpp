@@ -40,17 +40,17 @@ std::string Mm(double v) {
 
 }  // namespace
 
-std::vector<double> ScheduleVoxels(const CaseConfig& config) {
-  const double v = config.VoxelSizeMm();
-  if (v < 0.4) return {0.8, 0.4, v};
-  return {std::max(0.8, 2.0 * v), v};
+std::vector<double> ScheduleVoxels(double finest_mm) {
+  if (finest_mm < 0.4) return {0.8, 0.4, finest_mm};
+  return {std::max(0.8, 2.0 * finest_mm), finest_mm};
 }
+
+std::vector<double> ScheduleVoxels(const CaseConfig& config) { return ScheduleVoxels(config.VoxelSizeMm()); }
 
 collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
                                                 double voxel_mm) {
-  CaseConfig at = config;
-  at.voxel_mm = voxel_mm;
-  const std::vector<double> voxels = ScheduleVoxels(at);
+  // (The config's voxel size is its resolution choice; the guard asks about others.)
+  const std::vector<double> voxels = ScheduleVoxels(voxel_mm);
   collision::OracleOptions base;
   base.sample_spacing_mm = config.sample_spacing_mm;
   collision::MemoryEstimate total;

@@ -26,6 +26,8 @@ namespace occlude::app {
 /// The voxel sizes of the planner's schedule for a config: coarse to fine, ending at the
 /// config's voxel size ({0.8, 0.4, v} for v < 0.4, else {max(0.8, 2 v), v}).
 std::vector<double> ScheduleVoxels(const CaseConfig& config);
+/// The same schedule ending at `finest_mm`.
+std::vector<double> ScheduleVoxels(double finest_mm);
 
 /// Estimated peak memory of what a session of `config` builds when its finest voxel size
 /// is `voxel_mm`: the oracles of the schedule ending there and the map fields.

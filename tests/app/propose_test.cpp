@@ -174,6 +174,17 @@ TEST(DemoCommandTest, ProposesTheDesignedBiteAndLeavesARefinableCase) {
   EXPECT_TRUE(std::filesystem::exists(tmp / "demo" / "refine.json"));
 }
 
+// The memory guard of a session asks about other voxel sizes than the config's: over the
+// budget at 0.2 mm, it names a coarser one that fits (the estimate follows the voxel size).
+TEST(ProposeCommandTest, MemoryGuardNamesACoarserVoxelThatFits) {
+  test::TempDir tmp;
+  Write(tmp / "case.toml", "[synthetic]\ntriangles = 20000\n[output]\nfolder = \"" + (tmp / "out").string() + "\"\n");
+  const test::CommandRun r = test::Occlude("propose " + (tmp / "case.toml").string() + " --memory-budget-mb 500");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("the smallest voxel size that fits is about"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp / "out" / "pose.json"));
+}
+
 TEST(ProposeCommandTest, BadSolverSettingsAreOneLineErrorsNamingTheKey) {
   test::TempDir tmp;
   const std::vector<std::pair<std::string, std::string>> bad = {
