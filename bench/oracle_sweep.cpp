@@ -8,7 +8,11 @@
 // exact distances (p95 error, contacts within 0.05 mm missed).
 //
 //   occlude_oracle_sweep [--case a-bite-3shape] [--axis y] [--reps 15] [--jitter 3]
-//                        [--only boolean|oracle|sdf]
+//                        [--only boolean|oracle|sdf] [--profile OFFSET]
+//
+// --profile OFFSET repeats only the sub-voxel oracle query at that offset (no jitter) for
+// 10 s of thread CPU, for a profiler: perf record -g occlude_oracle_sweep --profile -0.2
+// ($OCCLUDE_CELL_LEVEL sets OracleOptions::cell_level there).
 //
 // Exits 0 with a message when the shared data folder is absent ($OCCLUDE_DATA_DIR
 // overrides ../shared/data beside the checkout).
@@ -66,6 +70,7 @@ struct Args {
   int reps = 15;
   int jitter = 3;
   std::string only;
+  std::string profile;  ///< offset (mm) to repeat the oracle query at, for a profiler
 };
 
 Args Parse(int argc, char** argv) {
@@ -77,6 +82,7 @@ Args Parse(int argc, char** argv) {
     if (k == "--reps") a.reps = std::max(1, std::atoi(v.c_str()));
     if (k == "--jitter") a.jitter = std::max(1, std::atoi(v.c_str()));
     if (k == "--only") a.only = v;
+    if (k == "--profile") a.profile = v;
   }
   return a;
 }
@@ -282,6 +288,25 @@ int main(int argc, char** argv) {
   std::printf("case %s: lower %zu, upper %zu triangles; axis %d; reps %d\n", args.case_name.c_str(),
               lower->num_triangles(), upper->num_triangles(), args.axis, args.reps);
 
+  if (!args.profile.empty()) {
+    collision::OracleOptions oopt;
+    if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
+    const collision::JawOracle oracle(lower, upper, oopt);
+    const Isometry3d X = Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
+    collision::OracleRequest req;
+    req.level = collision::AccuracyLevel::kSubVoxel;
+    collision::OracleResult res;
+    const double t0 = ThreadSeconds();
+    std::size_t n = 0;
+    while (ThreadSeconds() - t0 < 10.0) {
+      oracle.Query(X, req, &res);
+      ++n;
+    }
+    std::printf("profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu samples, %zu contacts\n",
+                args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
+                res.samples_evaluated, res.contact_samples);
+    return 0;
+  }
   collision::SphereTreeOptions topt;
   topt.voxelize.voxel_size_mm = 0.2;
   if (args.only.empty() || args.only == "boolean") {

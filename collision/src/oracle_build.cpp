@@ -32,6 +32,31 @@ long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint3
   return -1;
 }
 
+// Connected component of each triangle (triangles sharing a vertex index are
+// connected), numbered 0.. in order of first appearance.
+std::vector<std::uint32_t> TriangleComponents(const io::TriangleMesh& mesh) {
+  std::vector<std::uint32_t> parent(mesh.num_vertices());
+  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    for (int k = 1; k < 3; ++k) {
+      const std::uint32_t a = find(static_cast<std::uint32_t>(t[0])), b = find(static_cast<std::uint32_t>(t[k]));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<std::uint32_t> id(mesh.num_vertices(), ~0u), component(mesh.num_triangles());
+  std::uint32_t next = 0;
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    std::uint32_t& c = id[find(static_cast<std::uint32_t>(mesh.triangles[t][0]))];
+    if (c == ~0u) c = next++;
+    component[t] = c;
+  }
+  return component;
+}
+
 struct RawSample {
   Eigen::Vector3d p;
   double area;
@@ -141,12 +166,23 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   sample_area_.resize(ns);
   sample_part_.resize(ns);
   std::vector<std::uint32_t> fill(voxel_sample_begin_.begin(), voxel_sample_begin_.end() - 1);
+  // One representative sample per connected component of the upper surface,
+  // with the component's sample count (CountNestedCells).
+  const std::vector<std::uint32_t> component = TriangleComponents(up);
+  std::vector<std::uint32_t> component_slot;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (voxel_of[i] < 0) continue;
     const std::uint32_t slot = fill[static_cast<std::size_t>(voxel_of[i])]++;
     sample_p_U_[slot] = raw[i].p.cast<float>();
     sample_area_[slot] = static_cast<float>(raw[i].area);
     sample_part_[slot] = up.triangle_part.empty() ? 0 : up.triangle_part[raw[i].triangle];
+    const std::uint32_t c = component[raw[i].triangle];
+    if (c >= component_slot.size()) component_slot.resize(c + 1, ~0u);
+    if (component_slot[c] == ~0u) {
+      component_slot[c] = static_cast<std::uint32_t>(component_samples_.size());
+      component_samples_.push_back({slot, 0});
+    }
+    ++component_samples_[component_slot[c]].count;
   }
   // Voxel-level samples: area-weighted centroid and the dominant part.
   voxel_centroid_U_.resize(nv);
@@ -222,6 +258,16 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     }
     samples_radius_ += 1e-6;  // float storage of the samples
   }
+  // Row index of the lower's interior runs (sorted by z, then y).
+  const VoxelGrid& lower_grid = lower_.grid();
+  if (!lower_grid.interior_runs.empty()) {
+    const auto ny = static_cast<std::size_t>(lower_grid.dims.y());
+    interior_row_begin_.assign(ny * static_cast<std::size_t>(lower_grid.dims.z()) + 1, 0);
+    for (const VoxelRun& r : lower_grid.interior_runs) {
+      ++interior_row_begin_[static_cast<std::size_t>(r.y) + ny * static_cast<std::size_t>(r.z) + 1];
+    }
+    for (std::size_t i = 0; i + 1 < interior_row_begin_.size(); ++i) interior_row_begin_[i + 1] += interior_row_begin_[i];
+  }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
   for (const auto& part : up.parts) {
     const int t = part.tooth_number;
@@ -234,7 +280,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 std::size_t JawOracle::MemoryBytes() const {
   return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
          sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
-         sample_area_.capacity() * sizeof(float) +
+         sample_area_.capacity() * sizeof(float) + component_samples_.capacity() * sizeof(ComponentSamples) +
+         interior_row_begin_.capacity() * sizeof(std::uint32_t) +
          sample_part_.capacity() * sizeof(std::int32_t) +
          voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +

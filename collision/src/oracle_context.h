@@ -18,17 +18,29 @@
 
 namespace occlude::collision {
 
-/// grid.Classify(voxel of p) == kInterior, the cheap test first: a voxel is
-/// interior only inside an interior run (there are none for open meshes).
-inline bool IsInterior(const VoxelGrid& grid, const Eigen::Vector3d& p) {
-  const Eigen::Vector3i v = grid.VoxelOf(p);
-  return detail::RunsContain(grid.interior_runs, v.x(), v.y(), v.z()) && grid.Classify(v) == VoxelClass::kInterior;
+/// lower grid.Classify(voxel of p_L) == kInterior: the interior runs are
+/// disjoint from the other classes, so the runs of the voxel's row tell (there
+/// are none for open meshes).
+inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
+  if (interior_row_begin_.empty()) return false;
+  const VoxelGrid& grid = lower_.grid();
+  const Eigen::Vector3i v = grid.VoxelOf(p_L);
+  if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) return false;
+  const std::size_t row =
+      static_cast<std::size_t>(v.y()) + static_cast<std::size_t>(grid.dims.y()) * static_cast<std::size_t>(v.z());
+  for (std::uint32_t k = interior_row_begin_[row]; k < interior_row_begin_[row + 1]; ++k) {
+    const VoxelRun& r = grid.interior_runs[k];
+    if (v.x() < r.x_begin) return false;
+    if (v.x() < r.x_end) return true;
+  }
+  return false;
 }
 
 /// Where the unknown samples of a cell (outside the field's band) lie.
 enum class UnknownSide {
   kExterior,  ///< all outside the lower jaw: they count for nothing
   kMaybeInterior,  ///< classify each (only those inside the lower count, as deep)
+  kInterior,       ///< all inside the lower jaw beyond the band: each counts as deep
 };
 
 struct JawOracle::QueryContext {
@@ -78,6 +90,24 @@ struct JawOracle::QueryContext {
   /// in size and interp(p) >= d - sqrt(3) |p - c|; and interp(p) >= d - |p -
   /// c| - 2 * interp_error through the exact distance. Above `outer` nothing
   /// counts, and d > r + interp_error - band rules out deep samples.
+  /// The side of the unknown samples (outside the band) within r of a point c
+  /// where the field is d (`known`) or unknown. The band holds every point
+  /// within band_mm of the surface, so an unknown sample s has |D(s)| >
+  /// band_mm, and |D(s) - D(c)| <= r, |d - D(c)| <= interp_error: D(s) > 0
+  /// needs d > band_mm - r - interp_error, D(s) < 0 needs d < r + interp_error -
+  /// band_mm. With c unknown too and r < band_mm, s is on c's side, which
+  /// `interior()` (the lower's voxel class at c) tells.
+  template <typename InteriorTest>
+  UnknownSide SideOfUnknown(bool known, double d, double r, InteriorTest&& interior) const {
+    if (known) {
+      if (d > r + interp_error - band_mm + kSlackMm) return UnknownSide::kExterior;
+      if (d < band_mm - r - interp_error - kSlackMm) return UnknownSide::kInterior;
+      return UnknownSide::kMaybeInterior;
+    }
+    if (r < band_mm - kSlackMm) return interior() ? UnknownSide::kInterior : UnknownSide::kExterior;
+    return UnknownSide::kMaybeInterior;
+  }
+
   bool Irrelevant(double d, double r) const {
     return d > outer + std::min(kSqrt3 * r, r + 2.0 * interp_error) + kSlackMm &&
            d > r + interp_error - band_mm + kSlackMm;

@@ -28,7 +28,7 @@ namespace occlude::collision {
 
 void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const {
   // Outside the measured range: deep inside the lower jaw, or simply far away.
-  if (IsInterior(lower_.grid(), p_L)) ++result->deep_samples;
+  if (LowerInterior(p_L)) ++result->deep_samples;
 }
 
 void JawOracle::CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const {
@@ -39,17 +39,13 @@ void JawOracle::CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* re
   const Eigen::Vector3d box_lo = grid.origin_F, box_hi = grid.origin_F + grid.voxel_size_mm * grid.dims.cast<double>();
   const Eigen::Vector3d gap = (box_lo - c_L).cwiseMax(c_L - box_hi).cwiseMax(0.0);
   if (gap.norm() > samples_radius_) return;
-  const int level = std::min(options_.cell_level, upper_.octree().top_level);
-  const std::uint32_t begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
-  const std::uint32_t end = upper_.octree().level_end[static_cast<std::size_t>(level)];
-  for (std::uint32_t n = begin; n < end; ++n) {
-    const std::uint32_t first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
-    if (first == last) continue;
-    // Every sample is farther than the reach from the lower surface (no cell was found), so
-    // its voxel's class is its side; the cell's upper surface cannot cross the lower surface
-    // without coming within the reach, so its samples share its first sample's side (unless
-    // the upper surface is in several pieces within one cell).
-    if (IsInterior(grid, X_LU * sample_p_U_[first].cast<double>())) result->deep_samples += last - first;
+  // No cell was found, so no upper voxel cube (which holds the upper surface) comes within the
+  // reach of a lower voxel cube (which holds the lower surface): the surfaces do not meet, and
+  // each connected piece of the upper surface lies wholly on one side of the lower surface.
+  // One sample tells the side of its piece; a sample outside the lower's surface voxels has its
+  // voxel's class.
+  for (const ComponentSamples& c : component_samples_) {
+    if (LowerInterior(X_LU * sample_p_U_[c.sample].cast<double>())) result->deep_samples += c.count;
   }
 }
 
@@ -154,23 +150,48 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
   for (std::uint32_t v = first; v < last; ++v) {
     const std::uint32_t begin = voxel_sample_begin_[v], end = voxel_sample_begin_[v + 1];
     if (begin == end) continue;
-    if (test_voxels) {
-      const Eigen::Vector4f& sphere = voxel_sphere_U_[v];  // centre offset from the cell's, radius
+    const Eigen::Vector4f& sphere = voxel_sphere_U_[v];  // centre offset from the cell's, radius
+    // The field at the voxel's centre, once looked up (by the voxel test, or
+    // for the first unknown sample of a cell whose unknown samples need a side).
+    bool centre_looked_up = false, centre_known = false;
+    float centre_d = 0.0f;
+    auto look_up_centre = [&] {
       const Eigen::Array4f local = c.local + m0 * sphere.x() + m1 * sphere.y() + m2 * sphere.z();
-      float d = 0.0f;
-      if (sampler.Value(c.base, local, &d)) {
-        if (q->Irrelevant(static_cast<double>(d), static_cast<double>(sphere.w()))) continue;
+      centre_known = sampler.Value(c.base, local, &centre_d);
+      centre_looked_up = true;
+    };
+    if (test_voxels) {
+      look_up_centre();
+      if (centre_known) {
+        if (q->Irrelevant(static_cast<double>(centre_d), static_cast<double>(sphere.w()))) continue;
       } else if (skip_unknown && static_cast<double>(sphere.w()) < q->s) {
         continue;
       }
     }
+    // The side of this voxel's unknown samples: decided once, from the field at
+    // the voxel's centre (QueryContext::SideOfUnknown), when the cell left it open.
+    UnknownSide voxel_side = q->unknown_side;
+    bool voxel_side_found = !classify_unknown;
     evaluated += end - begin;
     for (auto i = begin; i < end; ++i) {
       const Eigen::Vector4f& o = sample_offset_U_[i];
       const Eigen::Array4f local = c.local + m0 * o.x() + m1 * o.y() + m2 * o.z();
       float d = 0.0f;
       if (!sampler.Value(c.base, local, &d)) {
-        if (classify_unknown) CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), result);
+        if (!voxel_side_found) {
+          if (!centre_looked_up) look_up_centre();
+          voxel_side = q->SideOfUnknown(centre_known, static_cast<double>(centre_d), static_cast<double>(sphere.w()), [&] {
+            const Eigen::Vector3d centre_U =
+                sample_p_U_[i].cast<double>() - o.head<3>().cast<double>() + sphere.head<3>().cast<double>();
+            return LowerInterior(q->X_LU * centre_U);
+          });
+          voxel_side_found = true;
+        }
+        if (voxel_side == UnknownSide::kInterior) {
+          ++result->deep_samples;
+        } else if (voxel_side == UnknownSide::kMaybeInterior) {
+          CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), result);
+        }
         continue;
       }
       min_d = std::min(min_d, d);

@@ -76,15 +76,25 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
   const std::uint32_t level_begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
   QueryContext q(X_LU, request, sdf_, cells.reach_mm);
-  const VoxelGrid& lower_grid = lower_.grid();
-  for (const std::uint32_t node : found.cells_b) {
+  // The cells' grid points first, so that the field's bricks can be asked for
+  // some cells ahead (two dependent loads per cell: index entry, then brick).
+  thread_local std::vector<SdfSampler::GridPoint> points;
+  points.resize(found.cells_b.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = q.sampler.GridPointAt(q.A * cell_center_U_[found.cells_b[i] - level_begin].cast<double>() + q.b);
+  }
+  constexpr std::size_t kIndexAhead = 16, kCornersAhead = 8;  // a-bite-3shape: 8/4 .. 32/16 within noise
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (i + kIndexAhead < points.size()) q.sampler.PrefetchIndex(points[i + kIndexAhead]);
+    if (i + kCornersAhead < points.size()) q.sampler.PrefetchCorners(points[i + kCornersAhead]);
+    const std::uint32_t node = found.cells_b[i];
     if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]]) continue;
     // At voxel level a point's value is the field at its voxel's centre,
     // within 0.866 s of the point: the cell's reach grows by that much.
     const double r = static_cast<double>(cell_radius_[node - level_begin]) +
                      (request.level == AccuracyLevel::kVoxel ? q.interp_error : 0.0);
     const Eigen::Vector3d c_U = cell_center_U_[node - level_begin].cast<double>();
-    q.cell = q.sampler.GridPointAt(q.A * c_U + q.b);
+    q.cell = points[i];
     float d = 0.0f;
     q.cell_known = q.sampler.Value(q.cell.base, q.cell.local, &d);
     q.cell_d = static_cast<double>(d);
@@ -94,7 +104,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
       q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior : UnknownSide::kMaybeInterior;
     } else if (r < q.band_mm) {
       const Eigen::Vector3d c_L = X_LU * c_U;
-      q.unknown_side = IsInterior(lower_grid, c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
+      q.unknown_side = LowerInterior(c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
       // Outside, the lower's voxel cubes (which hold its surface) are at least
       // LowerBound away from c, so a sample within r has D >= that - r and its
       // interpolated value (within interp_error of D) is above the outer band.

@@ -297,6 +297,32 @@ TEST(OracleRobustness, FullyNestedJawsAreReportedAsInterpenetrating) {
   }
 }
 
+// An upper in two pieces, one inside the closed lower and one outside it, none within reach
+// of its surface: exactly the samples of the piece inside count as deep (one interior test
+// per connected piece, JawOracle::CountNestedCells), whichever piece it is.
+TEST(OracleRobustness, OnlyTheNestedPieceOfAnUpperCountsAsDeep) {
+  const Nested& n = NestedSpheres();
+  auto two = std::make_shared<io::TriangleMesh>(test::MakeSphere({0, 0, 0}, 3.0, 12, 16));
+  two->Append(test::MakeSphere({20, 0, 0}, 3.0, 12, 16));
+  OracleOptions options;
+  options.voxel_size_mm = 0.5;
+  const JawOracle oracle(n.large, two, options);
+  Eigen::Isometry3d shifted = Eigen::Isometry3d::Identity();
+  shifted.translation() = Eigen::Vector3d(-20, 0, 0);
+  Eigen::Isometry3d apart = Eigen::Isometry3d::Identity();
+  apart.translation() = Eigen::Vector3d(0, 30, 0);
+  for (const AccuracyLevel level : kLevels) {
+    const OracleResult first = Query(oracle, Eigen::Isometry3d::Identity(), level);
+    const OracleResult second = Query(oracle, shifted, level);
+    const OracleResult none = Query(oracle, apart, level);
+    EXPECT_EQ(first.cells, 0u) << ToString(level);
+    EXPECT_GT(first.deep_samples, 0u) << ToString(level);
+    EXPECT_GT(second.deep_samples, 0u) << ToString(level);
+    EXPECT_EQ(first.deep_samples + second.deep_samples, oracle.num_samples()) << ToString(level);
+    EXPECT_EQ(none.deep_samples, 0u) << ToString(level);
+  }
+}
+
 TEST(OracleRobustness, NonFiniteOrNonRigidPosesAreRefused) {
   const JawOracle& oracle = *SyntheticBite().oracle;
   OracleResult r;

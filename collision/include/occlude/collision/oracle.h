@@ -168,9 +168,11 @@ class JawOracle {
                   std::int32_t part, const OracleRequest& request, OracleResult* result) const;
   /// An unknown sample (outside the field's band, or no triangle within reach).
   void CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const;
+  /// The lower grid classes p_L's voxel Interior (oracle_context.h).
+  bool LowerInterior(const Eigen::Vector3d& p_L) const;
   // No upper cell came within reach of the lower surface: the upper lies wholly outside the
-  // lower or (parts of it) wholly inside a closed lower component. One interior test per
-  // cell centre tells which; the samples of the cells inside count as deep.
+  // lower or (some of its connected components) wholly inside a closed lower component. One
+  // interior test per upper component tells which; the samples of those inside count as deep.
   void CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
 
   OracleOptions options_;
@@ -196,6 +198,15 @@ class JawOracle {
   // samples' bounding box in U and their largest distance from it (0: none).
   std::vector<Eigen::Vector3f> cell_center_U_;
   std::vector<float> cell_radius_;
+  // Per connected component of the upper surface: one of its samples and how many it has.
+  struct ComponentSamples {
+    std::uint32_t sample;
+    std::uint32_t count;
+  };
+  std::vector<ComponentSamples> component_samples_;
+  // The lower grid's interior runs by row: those of row (y, z) are
+  // [interior_row_begin_[y + dims.y z], interior_row_begin_[that + 1]) (empty: no runs).
+  std::vector<std::uint32_t> interior_row_begin_;
   // A sphere holding every upper sample (centre in U, radius): rules out nesting at once.
   Eigen::Vector3d samples_centre_U_ = Eigen::Vector3d::Zero();
   double samples_radius_ = 0.0;

@@ -113,6 +113,26 @@ class SdfSampler {
     return voxel_;
   }
 
+  /// Two stages of a prefetch for a lookup at g some lookups ahead: first the
+  /// brick's index entry (PrefetchIndex, the earlier), then, once that entry is
+  /// in the cache, the brick's mask and the corner values of g's voxel
+  /// (PrefetchCorners). Neither changes what a lookup returns.
+  void PrefetchIndex(const GridPoint& g) const {
+    std::uint32_t b[3];
+    if (BrickOf(g, b)) sdf_->band_.PrefetchIndexAt(b[0], b[1], b[2]);
+  }
+  void PrefetchCorners(const GridPoint& g) const {
+    std::uint32_t b[3];
+    if (!BrickOf(g, b)) return;
+    const NarrowBandSdf::CornerBrick* brick = sdf_->BrickAt(b[0], b[1], b[2]);
+    if (brick == nullptr) return;
+    const Eigen::Array4i v = g.base + g.local.cast<int>();
+    const float* corner = brick->value + (v[0] & 3) + 5 * (v[1] & 3) + 25 * (v[2] & 3);
+    __builtin_prefetch(brick);
+    __builtin_prefetch(corner);
+    __builtin_prefetch(corner + 30);
+  }
+
   /// Trilinear signed distance (mm) at base + local; false outside the band.
   bool Value(const Eigen::Array4i& base, const Eigen::Array4f& local, float* distance) {
     Eigen::Array4f f;
@@ -143,6 +163,16 @@ class SdfSampler {
   }
 
  private:
+  /// Brick coordinates of g's voxel; false beyond the key range.
+  static bool BrickOf(const GridPoint& g, std::uint32_t* b) {
+    constexpr auto kLimit = static_cast<std::uint32_t>(kMortonMaxCoord) + 1u;
+    for (int a = 0; a < 3; ++a) {
+      const auto i = static_cast<std::uint32_t>(g.base[a] + static_cast<int>(g.local[a]));
+      if (i >= kLimit) return false;
+      b[a] = i >> 2;
+    }
+    return true;
+  }
   /// Offset of corner o = x + 2y + 4z from corner 0 in a 5x5x5 corner brick.
   static constexpr int kCornerStep[8] = {0, 1, 5, 6, 25, 26, 30, 31};
   /// Bit of local voxel x + 4y + 16z (each 0..3) in a brick's Morton-ordered mask.

@@ -137,6 +137,16 @@ class BrickSet {
     if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return KeyIndexHash::kNotFound;
     return dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
   }
+  /// Asks the cache for what BrickIndexAt(x, y, z) will read (the dense index's
+  /// entry; nothing when the hash serves), so that a later lookup does not wait.
+  void PrefetchIndexAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    if (dense_.empty()) return;
+    x -= dense_lo_[0];
+    y -= dense_lo_[1];
+    z -= dense_lo_[2];
+    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return;
+    __builtin_prefetch(&dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))]);
+  }
   const Brick* FindAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
     const std::uint32_t i = BrickIndexAt(x, y, z);
     return i == KeyIndexHash::kNotFound ? nullptr : &bricks_[i];
