@@ -198,8 +198,8 @@ TEST(CaseConfigExamples, EveryExampleLoads) {
     ASSERT_TRUE(c.output_dir.has_value());
     EXPECT_EQ(c.output_dir->parent_path().filename(), "out");
   }
-  const CaseConfig teeth = app::LoadCaseConfig(ExamplesDir() / "a-bite-3shape-teeth.toml");
-  if (have_data) {
+  if (have_data) {  // the per-tooth example names files of the shared data folder
+    const CaseConfig teeth = app::LoadCaseConfig(ExamplesDir() / "a-bite-3shape-teeth.toml");
     EXPECT_EQ(teeth.upper->files.size(), 15u);
   }
 }
