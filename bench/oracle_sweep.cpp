@@ -12,7 +12,8 @@
 //
 // --profile OFFSET repeats only the sub-voxel oracle query at that offset (no jitter) for
 // 10 s of thread CPU, for a profiler: perf record -g occlude_oracle_sweep --profile -0.2
-// ($OCCLUDE_CELL_LEVEL sets OracleOptions::cell_level there).
+// ($OCCLUDE_CELL_LEVEL sets OracleOptions::cell_level there; $OCCLUDE_PROFILE_QUERY=boolean
+// repeats the explicit boolean query instead, =voxel the voxel-level oracle).
 //
 // Exits 0 with a message when the shared data folder is absent ($OCCLUDE_DATA_DIR
 // overrides ../shared/data beside the checkout).
@@ -298,9 +299,24 @@ int main(int argc, char** argv) {
     collision::OracleResult res;
     const double t0 = ThreadSeconds();
     std::size_t n = 0;
+    // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
+    const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
+    const bool boolean = which != nullptr && std::string(which) == "boolean";
+    if (which != nullptr && std::string(which) == "voxel") req.level = collision::AccuracyLevel::kVoxel;
+    collision::CollisionRequest creq;
+    creq.first_only = true;
+    creq.delta_mm = 0.1;
+    collision::CollisionResult cres;
     while (ThreadSeconds() - t0 < 10.0) {
-      oracle.Query(X, req, &res);
+      if (boolean) {
+        collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
+      } else {
+        oracle.Query(X, req, &res);
+      }
       ++n;
+    }
+    if (boolean) {
+      std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0, cres.bound_tests);
     }
     std::printf("profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu samples, %zu contacts\n",
                 args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,

@@ -65,6 +65,7 @@ struct JawOracle::QueryContext {
 
   // The current cell.
   SdfSampler::GridPoint cell;  ///< grid point of the cell's sample centre in L
+  Eigen::Vector3f cell_centre_U = Eigen::Vector3f::Zero();  ///< that centre in U
   bool cell_known = false;     ///< the field is known at the centre
   double cell_d = 0.0;         ///< its interpolated value
   double cell_r = 0.0;         ///< the samples' largest distance from the centre

@@ -91,19 +91,24 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
   const bool classify_unknown = q->unknown_side == UnknownSide::kMaybeInterior;
   const std::uint32_t first = node_leaf_begin_[node], last = node_leaf_end_[node];
   if (request.level == AccuracyLevel::kVoxel) {
+    // Centroids as float offsets from the cell's centre, into the field's voxel
+    // units about the cell's grid point (as the sub-voxel samples); the point in
+    // L only for those that count.
+    const Eigen::Array4f m0 = q->M.col(0).array(), m1 = q->M.col(1).array(), m2 = q->M.col(2).array();
     for (std::uint32_t v = first; v < last; ++v) {
       if (voxel_area_[v] <= 0.0f) continue;
       ++result->samples_evaluated;
-      const Eigen::Vector3d p_L = q->X_LU * voxel_centroid_U_[v].cast<double>();
-      const SdfSampler::GridPoint g = q->sampler.GridPointOf(p_L);
+      const Eigen::Vector3f o = voxel_centroid_U_[v] - q->cell_centre_U;
+      const Eigen::Array4f local = q->cell.local + m0 * o.x() + m1 * o.y() + m2 * o.z();
       double d = 0.0;
-      if (!q->sampler.CellValue(g.base, g.local, &d)) {
-        if (classify_unknown) CountIfDeep(p_L, result);
+      if (!q->sampler.CellValue(q->cell.base, local, &d)) {
+        if (classify_unknown) CountIfDeep(q->X_LU * voxel_centroid_U_[v].cast<double>(), result);
         continue;
       }
       result->min_distance_mm = std::min(result->min_distance_mm, d);
-      Accumulate(p_L, d, Eigen::Vector3d::Zero(), static_cast<double>(voxel_area_[v]), voxel_part_[v], request,
-                 result);
+      if (d > q->outer) continue;  // counts for nothing else
+      Accumulate(q->X_LU * voxel_centroid_U_[v].cast<double>(), d, Eigen::Vector3d::Zero(),
+                 static_cast<double>(voxel_area_[v]), voxel_part_[v], request, result);
     }
     return;
   }

@@ -95,6 +95,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
                      (request.level == AccuracyLevel::kVoxel ? q.interp_error : 0.0);
     const Eigen::Vector3d c_U = cell_center_U_[node - level_begin].cast<double>();
     q.cell = points[i];
+    q.cell_centre_U = cell_center_U_[node - level_begin];
     float d = 0.0f;
     q.cell_known = q.sampler.Value(q.cell.base, q.cell.local, &d);
     q.cell_d = static_cast<double>(d);
