@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -69,6 +70,7 @@ cv::Size TextSize(const std::string& text, double scale, int thickness = 1) {
   return cv::getTextSize(text, kFont, scale, thickness, &baseline);
 }
 
+
 void DashedLine(cv::Mat& img, cv::Point2d a, cv::Point2d b, const cv::Scalar& color,
                 int thickness) {
   const double length = cv::norm(b - a);
@@ -81,6 +83,25 @@ void DashedLine(cv::Mat& img, cv::Point2d a, cv::Point2d b, const cv::Scalar& co
 }
 
 }  // namespace
+
+int ChartTextWidth(const std::string& text, double scale) { return TextSize(text, scale).width; }
+
+std::vector<std::string> WrapChartText(const std::string& text, double scale, int max_width_px) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  std::istringstream words(text);
+  while (words >> word) {
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && TextSize(longer, scale).width > max_width_px) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
 
 std::string RenderLineChartPng(const LineChart& chart) {
   const bool categorical = !chart.x_categories.empty();
@@ -106,6 +127,11 @@ std::string RenderLineChartPng(const LineChart& chart) {
     y_lo = std::min(y_lo, ay.Transform(r.y));
     y_hi = std::max(y_hi, ay.Transform(r.y));
   }
+  for (const double y : chart.y_include) {
+    if (!ay.Drawable(y)) continue;
+    y_lo = std::min(y_lo, ay.Transform(y));
+    y_hi = std::max(y_hi, ay.Transform(y));
+  }
   if (categorical) {
     x_lo = -0.5;
     x_hi = static_cast<double>(chart.x_categories.size()) - 0.5;
@@ -130,7 +156,11 @@ std::string RenderLineChartPng(const LineChart& chart) {
   ax.lo = x_lo, ax.hi = x_hi, ay.lo = y_lo, ay.hi = y_hi;
 
   cv::Mat img(chart.height, chart.width, CV_8UC3, kWhite);
-  const int left = 95, right = 300, top = chart.subtitle.empty() ? 60 : 80, bottom = 75;
+  const int left = 95, right = 300, bottom = 75;
+  constexpr double kSubtitleScale = 0.45;
+  constexpr int kSubtitleLine = 18;  // pixels per subtitle line
+  const std::vector<std::string> subtitle = WrapChartText(chart.subtitle, kSubtitleScale, chart.width - left - 20);
+  const int top = subtitle.empty() ? 60 : 62 + kSubtitleLine * static_cast<int>(subtitle.size());
   const cv::Rect plot(left, top, chart.width - left - right, chart.height - top - bottom);
   auto px = [&](double fx) { return plot.x + fx * plot.width; };
   auto py = [&](double fy) { return plot.y + (1.0 - fy) * plot.height; };
@@ -240,7 +270,9 @@ std::string RenderLineChartPng(const LineChart& chart) {
 
   // Titles, axis labels, legend.
   PutText(img, chart.title, cv::Point(left, 30), 0.7, kInk, 2);
-  if (!chart.subtitle.empty()) PutText(img, chart.subtitle, cv::Point(left, 58), 0.45, kInk);
+  for (std::size_t i = 0; i < subtitle.size(); ++i) {
+    PutText(img, subtitle[i], cv::Point(left, 58 + kSubtitleLine * static_cast<int>(i)), kSubtitleScale, kInk);
+  }
   const cv::Size xs = TextSize(chart.x_label, 0.55);
   PutText(img, chart.x_label, cv::Point(plot.x + (plot.width - xs.width) / 2, chart.height - 22),
           0.55, kInk);

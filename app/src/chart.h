@@ -35,8 +35,16 @@ struct LineChart {
   std::vector<std::string> x_categories;
   std::vector<ChartSeries> series;
   std::vector<ChartReference> references;
+  /// Values the y axis spans whatever the data (0 and 100 for a percentage).
+  std::vector<double> y_include;
   int width = 1100, height = 700;
 };
+
+/// Width in pixels of `text` in the charts' font at `scale`.
+int ChartTextWidth(const std::string& text, double scale);
+/// `text` in lines no wider than max_width_px at `scale`, broken at spaces (a word wider
+/// than that stays whole on its own line): how a chart's subtitle fits its width.
+std::vector<std::string> WrapChartText(const std::string& text, double scale, int max_width_px);
 
 /// Renders the chart as a PNG file's bytes. Throws std::invalid_argument when
 /// no series has a drawable point.

@@ -113,7 +113,9 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   stability.subtitle = subtitle + " | success: within " + Fixed(options.success_mm, 1) + " mm and " +
                        Fixed(options.success_deg, 0) + " deg of the reference; dashed: of the runs' consensus";
   stability.x_categories = labels;
+  stability.y_include = {0.0, 100.0};
   LineChart error = stability;
+  error.y_include.clear();
   error.subtitle = subtitle;
   error.title = "Pose error against start perturbation (" + result.case_name + ")";
   error.y_label = "translation error, mm (log)";

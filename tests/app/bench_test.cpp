@@ -283,6 +283,25 @@ TEST(BenchPosesTest, HapticTrajectoryDescendsThenSlidesAtTheContactHeight) {
   EXPECT_GT(lateral_max - lateral_min, 0.2);
 }
 
+TEST(ChartTest, LongSubtitlesWrapAtSpacesWithinTheWidth) {
+  const std::string text =
+      "a-bite-3shape | 2 cores (AMD EPYC), load 6.20 at start | one core per run | success: within 0.3 mm "
+      "and 1 deg of the reference; dashed: of the runs' consensus";
+  const int width = 600;
+  const std::vector<std::string> lines = app::WrapChartText(text, 0.45, width);
+  ASSERT_GE(lines.size(), 2u);
+  std::string joined;
+  for (const std::string& line : lines) {
+    EXPECT_LE(app::ChartTextWidth(line, 0.45), width) << line;
+    joined += (joined.empty() ? "" : " ") + line;
+  }
+  EXPECT_EQ(joined, text);  // nothing lost, words kept whole
+  EXPECT_EQ(app::WrapChartText("short", 0.45, width), std::vector<std::string>{"short"});
+  EXPECT_TRUE(app::WrapChartText("", 0.45, width).empty());
+  const std::string word(200, 'w');  // wider than the width: alone on its line, not cut
+  EXPECT_EQ(app::WrapChartText("a " + word + " b", 0.45, width), (std::vector<std::string>{"a", word, "b"}));
+}
+
 TEST(ChartTest, RendersAPngOfTheRequestedSizeAndRejectsAnEmptyChart) {
   app::LineChart chart;
   chart.title = "t";
