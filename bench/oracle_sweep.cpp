@@ -318,8 +318,8 @@ int main(int argc, char** argv) {
     if (boolean) {
       std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0, cres.bound_tests);
     }
-    std::printf("profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu samples, %zu contacts\n",
-                args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
+    std::printf("profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, %zu contacts\n",
+                args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells, res.node_tests,
                 res.samples_evaluated, res.contact_samples);
     return 0;
   }
