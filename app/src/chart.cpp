@@ -70,7 +70,6 @@ cv::Size TextSize(const std::string& text, double scale, int thickness = 1) {
   return cv::getTextSize(text, kFont, scale, thickness, &baseline);
 }
 
-
 void DashedLine(cv::Mat& img, cv::Point2d a, cv::Point2d b, const cv::Scalar& color,
                 int thickness) {
   const double length = cv::norm(b - a);

@@ -11,6 +11,7 @@
 
 #include "occlude/collision/morton.h"
 #include "occlude/collision/oracle.h"
+#include "voxelize_detail.h"
 
 namespace occlude::collision {
 namespace {
@@ -30,31 +31,6 @@ long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint3
     }
   }
   return -1;
-}
-
-// Connected component of each triangle (triangles sharing a vertex index are
-// connected), numbered 0.. in order of first appearance.
-std::vector<std::uint32_t> TriangleComponents(const io::TriangleMesh& mesh) {
-  std::vector<std::uint32_t> parent(mesh.num_vertices());
-  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-  auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    for (int k = 1; k < 3; ++k) {
-      const std::uint32_t a = find(static_cast<std::uint32_t>(t[0])), b = find(static_cast<std::uint32_t>(t[k]));
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
-  std::vector<std::uint32_t> id(mesh.num_vertices(), ~0u), component(mesh.num_triangles());
-  std::uint32_t next = 0;
-  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    std::uint32_t& c = id[find(static_cast<std::uint32_t>(mesh.triangles[t][0]))];
-    if (c == ~0u) c = next++;
-    component[t] = c;
-  }
-  return component;
 }
 
 struct RawSample {
@@ -167,8 +143,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   sample_part_.resize(ns);
   std::vector<std::uint32_t> fill(voxel_sample_begin_.begin(), voxel_sample_begin_.end() - 1);
   // One representative sample per connected component of the upper surface,
-  // with the component's sample count (CountNestedCells).
-  const std::vector<std::uint32_t> component = TriangleComponents(up);
+  // with the component's sample count (CountNestedPieces).
+  const std::vector<std::int32_t> component = detail::ComponentOfTriangle(up);
   std::vector<std::uint32_t> component_slot;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (voxel_of[i] < 0) continue;
@@ -176,7 +152,7 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     sample_p_U_[slot] = raw[i].p.cast<float>();
     sample_area_[slot] = static_cast<float>(raw[i].area);
     sample_part_[slot] = up.triangle_part.empty() ? 0 : up.triangle_part[raw[i].triangle];
-    const std::uint32_t c = component[raw[i].triangle];
+    const auto c = static_cast<std::uint32_t>(component[raw[i].triangle]);
     if (c >= component_slot.size()) component_slot.resize(c + 1, ~0u);
     if (component_slot[c] == ~0u) {
       component_slot[c] = static_cast<std::uint32_t>(component_samples_.size());
@@ -245,7 +221,7 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       }
     }
   }
-  // The samples' bounding sphere (box centre, farthest sample), for CountNestedCells.
+  // The samples' bounding sphere (box centre, farthest sample), for CountNestedPieces.
   if (!sample_p_U_.empty()) {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (const Eigen::Vector3f& p : sample_p_U_) {

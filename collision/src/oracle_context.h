@@ -85,12 +85,6 @@ struct JawOracle::QueryContext {
     }
   }
 
-  /// True when a group of samples within r of a point where the field is d
-  /// holds none that counts: the interpolant is the trilinear interpolant of
-  /// exact (1-Lipschitz) grid values, so each partial derivative is at most 1
-  /// in size and interp(p) >= d - sqrt(3) |p - c|; and interp(p) >= d - |p -
-  /// c| - 2 * interp_error through the exact distance. Above `outer` nothing
-  /// counts, and d > r + interp_error - band rules out deep samples.
   /// The side of the unknown samples (outside the band) within r of a point c
   /// where the field is d (`known`) or unknown. The band holds every point
   /// within band_mm of the surface, so an unknown sample s has |D(s)| >
@@ -109,6 +103,12 @@ struct JawOracle::QueryContext {
     return UnknownSide::kMaybeInterior;
   }
 
+  /// True when a group of samples within r of a point where the field is d
+  /// holds none that counts: the interpolant is the trilinear interpolant of
+  /// exact (1-Lipschitz) grid values, so each partial derivative is at most 1
+  /// in size and interp(p) >= d - sqrt(3) |p - c|; and interp(p) >= d - |p -
+  /// c| - 2 * interp_error through the exact distance. Above `outer` nothing
+  /// counts, and d > r + interp_error - band rules out deep samples.
   bool Irrelevant(double d, double r) const {
     return d > outer + std::min(kSqrt3 * r, r + 2.0 * interp_error) + kSlackMm &&
            d > r + interp_error - band_mm + kSlackMm;

@@ -31,7 +31,7 @@ void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) co
   if (LowerInterior(p_L)) ++result->deep_samples;
 }
 
-void JawOracle::CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const {
+void JawOracle::CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* result) const {
   const VoxelGrid& grid = lower_.grid();
   if (grid.interior_runs.empty() || sample_p_U_.empty()) return;  // no closed lower component
   // Outside the lower grid's box entirely: nothing can be inside.
@@ -186,9 +186,7 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
         if (!voxel_side_found) {
           if (!centre_looked_up) look_up_centre();
           voxel_side = q->SideOfUnknown(centre_known, static_cast<double>(centre_d), static_cast<double>(sphere.w()), [&] {
-            const Eigen::Vector3d centre_U =
-                sample_p_U_[i].cast<double>() - o.head<3>().cast<double>() + sphere.head<3>().cast<double>();
-            return LowerInterior(q->X_LU * centre_U);
+            return LowerInterior(q->X_LU * (q->cell_centre_U + sphere.head<3>()).cast<double>());
           });
           voxel_side_found = true;
         }

@@ -118,7 +118,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
     }
     EvaluateCell(node, &q, result);
   }
-  if (found.cells_b.empty()) CountNestedCells(X_LU, result);
+  if (found.cells_b.empty()) CountNestedPieces(X_LU, result);
 
   const double lr = result->left_share + result->right_share;
   const double ap = result->anterior_share + result->posterior_share;

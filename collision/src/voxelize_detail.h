@@ -119,4 +119,8 @@ void BuildInterior(const io::TriangleMesh& mesh, const GridFrame& frame, VoxelGr
 /// ids), or -1 when its component is open: for cutting a mesh without opening a closed one.
 std::vector<std::int32_t> ClosedComponentOfTriangle(const io::TriangleMesh& mesh);
 
+/// Per triangle, its connected component as the interior stage finds them (dense ids,
+/// every component, open or closed): each is one connected piece of surface.
+std::vector<std::int32_t> ComponentOfTriangle(const io::TriangleMesh& mesh);
+
 }  // namespace occlude::collision::detail

@@ -282,7 +282,7 @@ TEST(OracleRobustness, PartlyNestedJawsReportPenetration) {
 
 // An upper jaw wholly inside a closed lower, farther than the oracle's reach from its
 // surface (no upper cell is found), still counts as interpenetrating: its samples are
-// classified against the lower's Interior voxels (JawOracle::CountNestedCells), so a
+// classified against the lower's Interior voxels (JawOracle::CountNestedPieces), so a
 // planner never takes it for a free pose like jaws far apart.
 TEST(OracleRobustness, FullyNestedJawsAreReportedAsInterpenetrating) {
   const Nested& n = NestedSpheres();
@@ -299,7 +299,7 @@ TEST(OracleRobustness, FullyNestedJawsAreReportedAsInterpenetrating) {
 
 // An upper in two pieces, one inside the closed lower and one outside it, none within reach
 // of its surface: exactly the samples of the piece inside count as deep (one interior test
-// per connected piece, JawOracle::CountNestedCells), whichever piece it is.
+// per connected piece, JawOracle::CountNestedPieces), whichever piece it is.
 TEST(OracleRobustness, OnlyTheNestedPieceOfAnUpperCountsAsDeep) {
   const Nested& n = NestedSpheres();
   auto two = std::make_shared<io::TriangleMesh>(test::MakeSphere({0, 0, 0}, 3.0, 12, 16));

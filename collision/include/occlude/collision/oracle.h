@@ -173,7 +173,7 @@ class JawOracle {
   // No upper cell came within reach of the lower surface: the upper lies wholly outside the
   // lower or (some of its connected components) wholly inside a closed lower component. One
   // interior test per upper component tells which; the samples of those inside count as deep.
-  void CountNestedCells(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
+  void CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
 
   OracleOptions options_;
   SphereTree lower_, upper_;

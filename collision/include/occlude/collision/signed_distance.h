@@ -131,21 +131,14 @@ class BrickSet {
       if (x >= kLimit || y >= kLimit || z >= kLimit) return KeyIndexHash::kNotFound;
       return index_.Find(MortonEncode(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)));
     }
-    x -= dense_lo_[0];
-    y -= dense_lo_[1];
-    z -= dense_lo_[2];
-    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return KeyIndexHash::kNotFound;
-    return dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
+    const std::uint32_t* slot = DenseSlot(x, y, z);
+    return slot == nullptr ? KeyIndexHash::kNotFound : *slot;
   }
   /// Asks the cache for what BrickIndexAt(x, y, z) will read (the dense index's
   /// entry; nothing when the hash serves), so that a later lookup does not wait.
   void PrefetchIndexAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
     if (dense_.empty()) return;
-    x -= dense_lo_[0];
-    y -= dense_lo_[1];
-    z -= dense_lo_[2];
-    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return;
-    __builtin_prefetch(&dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))]);
+    if (const std::uint32_t* slot = DenseSlot(x, y, z)) __builtin_prefetch(slot);
   }
   const Brick* FindAt(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
     const std::uint32_t i = BrickIndexAt(x, y, z);
@@ -177,6 +170,14 @@ class BrickSet {
  private:
   Brick& At(std::uint64_t brick_key);
   void BuildDense();
+  /// The dense index's entry for brick (x, y, z), or null outside its box (dense_ built).
+  const std::uint32_t* DenseSlot(std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    x -= dense_lo_[0];
+    y -= dense_lo_[1];
+    z -= dense_lo_[2];
+    if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return nullptr;
+    return &dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
+  }
   std::vector<Brick> bricks_;
   KeyIndexHash index_;
   std::size_t voxels_ = 0;
