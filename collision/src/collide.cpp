@@ -782,9 +782,11 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
   result->cells_b.clear();
   result->node_tests = result->leaf_tests = 0;
   if (a.empty() || b.empty()) return;
-  if (request.distance_bound && !a.distance_bound().empty()) {
+  const DistanceBound& a_bound = request.a_bound != nullptr ? *request.a_bound : a.distance_bound();
+  if (request.distance_bound && !a_bound.empty()) {
     thread_local std::vector<NodeRef> nodes;
-    const Side side_a(a, Eigen::Isometry3d::Identity(), false);
+    Side side_a(a, Eigen::Isometry3d::Identity(), false);
+    side_a.bound = &a_bound;
     const Side side_b(b, X_AB, true);
     BoundCellTraversal traversal(side_a, side_b, request, result);
     // Only B's spheres matter here: B's explicit records when present.

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <thread>
 
 #include "occlude/collision/morton.h"
@@ -118,6 +119,16 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   NarrowBandOptions sdf_options;
   sdf_options.dilation_voxels = options.sdf_dilation_voxels;
   sdf_ = NarrowBandSdf::Build(lower_L, lower_.grid(), sdf_options);
+  if (std::isnan(options.field_bound_mm) || !(options.field_bound_depth_mm >= 0.0) ||
+      !std::isfinite(options.field_bound_depth_mm)) {
+    throw std::invalid_argument(
+        "OracleOptions.field_bound_mm must not be NaN (negative: no field bound) and field_bound_depth_mm must be "
+        "finite and >= 0");
+  }
+  if (options.field_bound_mm >= 0.0) {
+    field_bound_ = DistanceBound::Build(sdf_.BandVoxelsWithin(static_cast<float>(options.field_bound_depth_mm),
+                                                             static_cast<float>(options.field_bound_mm)));
+  }
   arch_ = options.arch ? *options.arch : EstimateArchFrame(*lower_L, *upper_U);
 
   // Samples of the upper surface, grouped by voxel (counting sort).
@@ -254,7 +265,7 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 }
 
 std::size_t JawOracle::MemoryBytes() const {
-  return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
+  return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() + field_bound_.MemoryBytes() +
          sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
          sample_area_.capacity() * sizeof(float) + component_samples_.capacity() * sizeof(ComponentSamples) +
          interior_row_begin_.capacity() * sizeof(std::uint32_t) +

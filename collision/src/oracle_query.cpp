@@ -24,6 +24,10 @@ void CheckRequest(const OracleRequest& r) {
   if (!r.pivot_L.allFinite()) throw std::invalid_argument("OracleRequest.pivot_L must be finite");
 }
 
+// Reach of the field bound: float rounding of the samples' positions in the
+// field's voxels (1e-4 voxel units at the jaws' coordinates is far above it).
+constexpr double kFieldBoundSlackMm = 1e-5;
+
 // Distance from the lower surface up to which samples matter: the broad phase
 // reports every cell holding such a sample, and the exact level searches this far.
 double Reach(const OracleRequest& r) {
@@ -60,8 +64,16 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   cells.cell_level = options_.cell_level;
   cells.a_level = options_.lower_level;
   cells.distance_bound = options_.distance_bound;
-  // A sample within `reach` of the lower surface lies in a reported cell.
-  cells.reach_mm = Reach(request);
+  // A sample within `reach` of the lower surface lies in a reported cell; with
+  // the field bound, every sample whose value lies in [-search, outer] lies in
+  // one of its voxels.
+  const double reach = Reach(request);
+  const double outer = std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
+  const bool field_bound = request.level != AccuracyLevel::kExact && request.cull && !field_bound_.empty() &&
+                           outer <= options_.field_bound_mm &&
+                           request.penetration_search_mm <= options_.field_bound_depth_mm;
+  cells.reach_mm = field_bound ? kFieldBoundSlackMm : reach;
+  cells.a_bound = field_bound ? &field_bound_ : nullptr;
   thread_local CellResult found;
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();
@@ -75,7 +87,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   // Irrelevant's deep test passes.
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
   const std::uint32_t level_begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
-  QueryContext q(X_LU, request, sdf_, cells.reach_mm);
+  QueryContext q(X_LU, request, sdf_, reach);
   // The cells' grid points first, so that the field's bricks can be asked for
   // some cells ahead (two dependent loads per cell: index entry, then brick).
   thread_local std::vector<SdfSampler::GridPoint> points;

@@ -331,6 +331,36 @@ bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
   return true;
 }
 
+VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
+  VoxelGrid out;
+  out.voxel_size_mm = s_;
+  out.origin_F = origin_ - static_cast<double>(shift_) * s_ * Eigen::Vector3d::Ones();
+  out.dims = dims_ + Eigen::Vector3i::Constant(2 * shift_);
+  for (std::size_t i = 0; i < band_.bricks().size(); ++i) {
+    const detail::BrickSet::Brick& brick = band_.bricks()[i];
+    const Eigen::Vector3i base = 4 * MortonDecode(brick.key);
+    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
+      const int bit = __builtin_ctzll(m);
+      // The bit is the voxel's 2x2x2-interleaved position in the brick (as Locate).
+      const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1, ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
+                              ((bit >> 2) & 1) | ((bit >> 5) & 1) << 1);
+      const float* v = corner_bricks_[i].value + l.x() + 5 * l.y() + 25 * l.z();
+      float lowest = v[0], highest = v[0];
+      for (const int step : kCornerStep) {
+        lowest = std::min(lowest, v[step]);
+        highest = std::max(highest, v[step]);
+      }
+      bool keep = lowest <= value && highest >= -depth;
+      if (!keep) {
+        const Eigen::Vector3i g = base + l - Eigen::Vector3i::Constant(shift_);
+        keep = (g.array() >= 0).all() && surface_.Rank(MortonEncode(g)) != detail::KeyIndexHash::kNotFound;
+      }
+      if (keep) out.surface_keys.push_back((brick.key << 6) | static_cast<std::uint64_t>(bit));
+    }
+  }
+  return out;
+}
+
 bool NarrowBandSdf::CellValue(const Eigen::Vector3d& p_F, double* distance) const {
   Eigen::Vector3f f;
   const float* v = Locate(p_F, &f);

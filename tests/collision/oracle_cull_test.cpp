@@ -31,8 +31,16 @@ void ExpectSamePoints(const std::vector<SurfacePoint>& a, const std::vector<Surf
   }
 }
 
-/// Culled and unculled answers at X; returns {samples evaluated culled, unculled}.
-std::pair<std::size_t, std::size_t> CompareAt(const JawOracle& oracle, const Isometry3d& X, OracleRequest req) {
+struct Work {
+  std::size_t culled_samples = 0, full_samples = 0;
+  std::size_t culled_cells = 0, full_cells = 0;
+};
+
+/// Culled and unculled answers at X; returns the work of each. The culled query
+/// prunes with the field bound when the oracle has one and the request allows
+/// (OracleOptions::field_bound_mm), the unculled one never: the same answers,
+/// from fewer cells.
+Work CompareAt(const JawOracle& oracle, const Isometry3d& X, OracleRequest req) {
   OracleResult culled, full;
   req.cull = true;
   oracle.Query(X, req, &culled);
@@ -47,7 +55,6 @@ std::pair<std::size_t, std::size_t> CompareAt(const JawOracle& oracle, const Iso
   EXPECT_EQ(culled.contact_samples, full.contact_samples);
   EXPECT_EQ(culled.left_share, full.left_share);
   EXPECT_EQ(culled.anterior_share, full.anterior_share);
-  EXPECT_EQ(culled.cells, full.cells);
   EXPECT_EQ(culled.parts.size(), full.parts.size());
   for (std::size_t p = 0; p < std::min(culled.parts.size(), full.parts.size()); ++p) {
     EXPECT_EQ(culled.parts[p].contact_area_mm2, full.parts[p].contact_area_mm2) << p;
@@ -71,7 +78,16 @@ std::pair<std::size_t, std::size_t> CompareAt(const JawOracle& oracle, const Iso
     EXPECT_GT(culled.min_distance_mm, outer);
   }
   EXPECT_LE(culled.samples_evaluated, full.samples_evaluated);
-  return {culled.samples_evaluated, full.samples_evaluated};
+  return {culled.samples_evaluated, full.samples_evaluated, culled.cells, full.cells};
+}
+
+/// The indices and depths of the penetrating points no deeper than `depth`.
+std::vector<std::pair<std::size_t, double>> ShallowPoints(const std::vector<SurfacePoint>& points, double depth) {
+  std::vector<std::pair<std::size_t, double>> out;
+  for (const SurfacePoint& p : points) {
+    if (-p.distance_mm <= depth) out.emplace_back(out.size(), p.distance_mm);
+  }
+  return out;
 }
 
 /// Poses along the occlusal axis through X_ref, with a seeded jitter of up
@@ -129,7 +145,7 @@ TEST(OracleCull, WavySurfacesThroughContactMatchTheUnculledQuery) {
   options.sample_spacing_mm = 0.15;
   const JawOracle oracle(lower, upper, options);
   const Vector3d pivot(4, 4, 0);
-  std::size_t culled = 0, full = 0;
+  std::size_t culled = 0, full = 0, culled_cells = 0, full_cells = 0;
   for (const Isometry3d& X :
        Sweep(Isometry3d::Identity(), Vector3d::UnitZ(), pivot, {0.8, 0.5, 0.35, 0.25, 0.15, 0.05, -0.1}, 17)) {
     for (const AccuracyLevel level : {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel}) {
@@ -138,10 +154,17 @@ TEST(OracleCull, WavySurfacesThroughContactMatchTheUnculledQuery) {
         req.level = level;
         req.residuals = residuals;
         req.pivot_L = pivot;
-        const auto [c, f] = CompareAt(oracle, X, req);
+        const Work w = CompareAt(oracle, X, req);
         if (!residuals && level == AccuracyLevel::kSubVoxel) {
-          culled += c;
-          full += f;
+          culled += w.culled_samples;
+          full += w.full_samples;
+        }
+        // The field bound serves contact-only requests; the residual band (0.5 mm) is wider.
+        if (residuals) {
+          EXPECT_EQ(w.culled_cells, w.full_cells);
+        } else {
+          culled_cells += w.culled_cells;
+          full_cells += w.full_cells;
         }
       }
     }
@@ -149,6 +172,8 @@ TEST(OracleCull, WavySurfacesThroughContactMatchTheUnculledQuery) {
   // Culling must actually skip samples on this sweep (else it tests nothing);
   // the surfaces are close everywhere, so a quarter is a clear margin.
   EXPECT_LT(4 * culled, 3 * full) << culled << " of " << full;
+  // The field bound (no cell wholly beyond the contact band) must report fewer cells.
+  EXPECT_LT(20 * culled_cells, 19 * full_cells) << culled_cells << " of " << full_cells;
 }
 
 TEST(OracleCull, DeepSamplesInsideAClosedJawAreCountedTheSame) {
@@ -160,7 +185,14 @@ TEST(OracleCull, DeepSamplesInsideAClosedJawAreCountedTheSame) {
   OracleOptions options;
   options.voxel_size_mm = 0.2;
   options.sample_spacing_mm = 0.2;
+  // Penetration reaches beyond the search depth here, where each broad phase
+  // measures only part of it (OracleRequest::penetration_search_mm): culling
+  // is compared without the field bound; the field bound is compared on the
+  // samples within the search depth, which both broad phases find.
+  options.field_bound_mm = -1.0;
   const JawOracle oracle(lower, upper, options);
+  options.field_bound_mm = 0.1;
+  const JawOracle bounded(lower, upper, options);
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::size_t deep = 0;
@@ -173,9 +205,16 @@ TEST(OracleCull, DeepSamplesInsideAClosedJawAreCountedTheSame) {
       OracleRequest req;
       req.level = level;
       CompareAt(oracle, X, req);
-      OracleResult r;
+      OracleResult r, b;
       oracle.Query(X, req, &r);
+      bounded.Query(X, req, &b);
       deep += r.deep_samples;
+      EXPECT_EQ(ShallowPoints(r.penetrations, req.penetration_search_mm),
+                ShallowPoints(b.penetrations, req.penetration_search_mm));
+      EXPECT_EQ(r.contact_samples, b.contact_samples);
+      EXPECT_EQ(r.contact_area_mm2, b.contact_area_mm2);
+      ExpectSamePoints(r.contacts, b.contacts);
+      if (i % 3 == 0) EXPECT_EQ(r.deep_samples, b.deep_samples);  // nested: every sample of the piece
     }
   }
   EXPECT_GT(deep, 0u);  // the scene does exercise the deep count
@@ -197,10 +236,10 @@ TEST(OracleCull, RealRegisteredBiteMatchesTheUnculledQuery) {
       OracleRequest req;
       req.residuals = residuals;
       req.pivot_L = pivot;
-      const auto [c, f] = CompareAt(oracle, X, req);
+      const Work w = CompareAt(oracle, X, req);
       if (!residuals) {
-        culled += c;
-        full += f;
+        culled += w.culled_samples;
+        full += w.full_samples;
       }
     }
   }

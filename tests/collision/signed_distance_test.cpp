@@ -301,6 +301,38 @@ TEST(NarrowBand, CornerValuesAreExact) {
   EXPECT_GT(checked, 1500);
 }
 
+TEST(NarrowBand, BandVoxelsWithinHoldEveryPointWhoseValueLiesInTheRange) {
+  // Against the field itself: every point whose interpolated value lies in
+  // [-depth, value] lies in a voxel of the set, every surface voxel is in it,
+  // and the set leaves out some band voxels (else it proves nothing).
+  io::TriangleMesh mesh = test::MakeSphere(V(0, 0, 0), 1.5, 12, 20);
+  mesh.Append(test::MakeBox(V(0.8, -0.4, -0.3), V(2.0, 0.5, 0.6)));
+  const double s = 0.1;
+  const VoxelGrid grid = Grid(mesh, s);
+  const NarrowBandSdf sdf = NarrowBandSdf::Build(std::make_shared<const io::TriangleMesh>(mesh), grid, {});
+  const float depth = 0.05f, value = 0.03f;
+  const VoxelGrid set = sdf.BandVoxelsWithin(depth, value);
+  ASSERT_TRUE(std::is_sorted(set.surface_keys.begin(), set.surface_keys.end()));
+  ASSERT_LT(set.surface_keys.size(), sdf.num_band_voxels());
+  auto in_set = [&](const Eigen::Vector3i& v) {
+    return (v.array() >= 0).all() &&
+           std::binary_search(set.surface_keys.begin(), set.surface_keys.end(), MortonEncode(v));
+  };
+  const Eigen::Vector3i shift = Eigen::Vector3i::Constant(sdf.band_key_shift());
+  for (const std::uint64_t k : grid.surface_keys) EXPECT_TRUE(in_set(MortonDecode(k) + shift));
+  NearSurfaceSampler sampler(mesh, 8);
+  int inside = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const V p = sampler.Next(sdf.band_mm());
+    double d = 0.0;
+    if (!sdf.Interpolate(p, &d) || d < -depth || d > value) continue;
+    EXPECT_EQ(set.VoxelOf(p), grid.VoxelOf(p) + shift);
+    EXPECT_TRUE(in_set(set.VoxelOf(p))) << p.transpose() << " at " << d;
+    ++inside;
+  }
+  EXPECT_GT(inside, 200);
+}
+
 TEST(NarrowBand, FalseOutsideTheBand) {
   const io::TriangleMesh sphere = test::MakeSphere(V(0, 0, 0), kSphereRadius, 48, 96);
   const NarrowBandSdf sdf = Band(sphere, 0.2);

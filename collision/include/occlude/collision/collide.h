@@ -127,6 +127,10 @@ struct CellRequest {
   /// descent's (no grown-cube test). Falls back to the pair descent when A has
   /// no bound.
   bool distance_bound = false;
+  /// With distance_bound: prune against this bound (in A's frame) instead of
+  /// A's own, e.g. one over only the voxels of A where some value of interest
+  /// can occur; reach_mm then counts from its cubes. Null: A's bound.
+  const DistanceBound* a_bound = nullptr;
 };
 struct CellResult {
   std::vector<std::uint32_t> cells_b;  ///< octree node indices of B, in traversal order

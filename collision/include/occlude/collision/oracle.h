@@ -63,6 +63,18 @@ struct OracleOptions {
   /// Broad phase against the lower's DistanceBound (CellRequest::distance_bound):
   /// the upper tree alone is descended, O(1) per node; false = pair descent.
   bool distance_bound = true;
+  /// Sub-voxel and voxel-level queries whose outer band (the contact band, or
+  /// the residual band with residuals) is at most field_bound_mm and whose
+  /// penetration search is at most field_bound_depth_mm prune the upper tree
+  /// against the lower's field bound: the surface voxels and the band voxels
+  /// where the field takes values in [-depth, field_bound_mm]. Every sample
+  /// whose value lies in that range is in one of them, so the broad phase
+  /// needs no reach and reports no cell that lies wholly beyond the contact
+  /// band outside the lower jaw or wholly deeper than the search inside.
+  /// Other queries (exact level, cull = false, wider bands) use the surface
+  /// voxels and the reach. Negative field_bound_mm: no field bound (not built).
+  double field_bound_mm = 0.1;
+  double field_bound_depth_mm = 0.3;
   std::optional<ArchFrame> arch;  ///< default: EstimateArchFrame with U as given
 };
 
@@ -178,6 +190,7 @@ class JawOracle {
   OracleOptions options_;
   SphereTree lower_, upper_;
   NarrowBandSdf sdf_;
+  DistanceBound field_bound_;  ///< OracleOptions::field_bound_mm (empty when not built)
   ArchFrame arch_;
   // Upper samples in U, grouped by upper surface voxel (CSR, voxel order).
   std::vector<Eigen::Vector3f> sample_p_U_;

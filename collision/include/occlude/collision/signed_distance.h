@@ -227,6 +227,15 @@ class NarrowBandSdf {
   /// per axis).
   double band_mm() const { return band_mm_; }
   double voxel_size_mm() const { return s_; }
+  /// The band voxels where the field takes values in [-depth, value] (their
+  /// corners' range meets it: a trilinear value lies between its voxel's
+  /// smallest and largest corner) together with the surface voxels, as a grid
+  /// of their own: voxel (i, j, k) of this field is voxel (i, j, k) +
+  /// band_key_shift() of the result (band voxels reach below index 0), same
+  /// voxel size, origin shifted to match; only voxel_size_mm, origin_F, dims
+  /// and surface_keys are set (enough for DistanceBound::Build).
+  VoxelGrid BandVoxelsWithin(float depth, float value) const;
+  int band_key_shift() const { return shift_; }
   std::size_t num_band_voxels() const { return band_.num_voxels(); }
   /// Bytes held by this object (the shared mesh is not counted).
   std::size_t MemoryBytes() const;
