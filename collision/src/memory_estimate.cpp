@@ -144,6 +144,13 @@ MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L, const io::T
       EstimateNarrowBandSdfMemory(lower_L, options.voxel_size_mm, options.sdf_dilation_voxels);
   field.peak_bytes = field.resident_bytes;
   total += field;
+  // The field bound: a distance bound over a set a few voxels thicker than the
+  // lower's surface voxels, about the size of the lower tree's own bound
+  // (a-bite-3shape at 0.2 mm: 5 MB either way).
+  if (options.field_bound_mm >= 0.0) {
+    const double s = options.voxel_size_mm;
+    total += Make(std::max(kBoundMinBytes, kBoundBytesPerArea * lower_L.SurfaceArea() / (s * s)), 0.0);
+  }
   const double spacing = options.sample_spacing_mm > 0 ? options.sample_spacing_mm : 0.3;
   const double samples = SampleCount(upper_U, spacing);
   const double voxels = SurfaceVoxels(upper_U, options.voxel_size_mm);
