@@ -93,6 +93,12 @@ const char* ToString(AccuracyLevel level) {
 JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
                      std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options)
     : options_(options) {
+  if (std::isnan(options.field_bound_mm) || !(options.field_bound_depth_mm >= 0.0) ||
+      !std::isfinite(options.field_bound_depth_mm)) {
+    throw std::invalid_argument(
+        "OracleOptions.field_bound_mm must not be NaN (negative: no field bound) and field_bound_depth_mm must be "
+        "finite and >= 0");
+  }
   const auto start = std::chrono::steady_clock::now();
   SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = options.voxel_size_mm;
@@ -119,15 +125,12 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   NarrowBandOptions sdf_options;
   sdf_options.dilation_voxels = options.sdf_dilation_voxels;
   sdf_ = NarrowBandSdf::Build(lower_L, lower_.grid(), sdf_options);
-  if (std::isnan(options.field_bound_mm) || !(options.field_bound_depth_mm >= 0.0) ||
-      !std::isfinite(options.field_bound_depth_mm)) {
-    throw std::invalid_argument(
-        "OracleOptions.field_bound_mm must not be NaN (negative: no field bound) and field_bound_depth_mm must be "
-        "finite and >= 0");
-  }
   if (options.field_bound_mm >= 0.0) {
-    field_bound_ = DistanceBound::Build(sdf_.BandVoxelsWithin(static_cast<float>(options.field_bound_depth_mm),
-                                                             static_cast<float>(options.field_bound_mm)));
+    // Widened by a margin far above float rounding in the trilinear values (a
+    // rounded value may fall an ulp outside its voxel's corner range).
+    constexpr double kMarginMm = 1e-5;
+    field_bound_ = DistanceBound::Build(sdf_.BandVoxelsWithin(static_cast<float>(options.field_bound_depth_mm + kMarginMm),
+                                                             static_cast<float>(options.field_bound_mm + kMarginMm)));
   }
   arch_ = options.arch ? *options.arch : EstimateArchFrame(*lower_L, *upper_U);
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -162,6 +164,21 @@ TEST(OracleValidationTest, RejectsBadRequests) {
   EXPECT_THROW(oracle.Query(Eigen::Isometry3d::Identity(), req, &res), std::invalid_argument);
   req.contact_band_mm = std::nan("");
   EXPECT_THROW(oracle.Query(Eigen::Isometry3d::Identity(), req, &res), std::invalid_argument);
+}
+
+TEST(OracleValidationTest, RejectsBadFieldBoundOptions) {
+  auto box = std::make_shared<TriangleMesh>(test::MakeBox({0, 0, 0}, {1, 1, 1}));
+  OracleOptions options;
+  options.field_bound_mm = std::nan("");
+  EXPECT_THROW(JawOracle(box, box, options), std::invalid_argument);
+  options.field_bound_mm = 0.1;
+  options.field_bound_depth_mm = -0.1;
+  EXPECT_THROW(JawOracle(box, box, options), std::invalid_argument);
+  options.field_bound_depth_mm = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(JawOracle(box, box, options), std::invalid_argument);
+  options.field_bound_mm = -1.0;  // no field bound: valid
+  options.field_bound_depth_mm = 0.3;
+  EXPECT_NO_THROW(JawOracle(box, box, options));
 }
 
 }  // namespace
