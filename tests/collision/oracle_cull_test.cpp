@@ -214,7 +214,9 @@ TEST(OracleCull, DeepSamplesInsideAClosedJawAreCountedTheSame) {
       EXPECT_EQ(r.contact_samples, b.contact_samples);
       EXPECT_EQ(r.contact_area_mm2, b.contact_area_mm2);
       ExpectSamePoints(r.contacts, b.contacts);
-      if (i % 3 == 0) EXPECT_EQ(r.deep_samples, b.deep_samples);  // nested: every sample of the piece
+      if (i % 3 == 0) {
+        EXPECT_EQ(r.deep_samples, b.deep_samples);  // nested: every sample of the piece
+      }
     }
   }
   EXPECT_GT(deep, 0u);  // the scene does exercise the deep count
