@@ -325,7 +325,7 @@ TEST(NarrowBand, BandVoxelsWithinHoldEveryPointWhoseValueLiesInTheRange) {
   for (int i = 0; i < 4000; ++i) {
     const V p = sampler.Next(sdf.band_mm());
     double d = 0.0;
-    if (!sdf.Interpolate(p, &d) || d < -depth || d > value) continue;
+    if (!sdf.Interpolate(p, &d) || d < -static_cast<double>(depth) || d > static_cast<double>(value)) continue;
     EXPECT_EQ(set.VoxelOf(p), grid.VoxelOf(p) + shift);
     EXPECT_TRUE(in_set(set.VoxelOf(p))) << p.transpose() << " at " << d;
     ++inside;
