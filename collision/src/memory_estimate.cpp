@@ -42,7 +42,8 @@ constexpr double kSdfVertexBytes = 12;  // vertex pseudo-normal (3 floats)
 // floats), area, part; while building, each raw sample is 40 bytes plus its voxel
 // index (8), in vectors that grow by doubling.
 constexpr double kSampleBytes = 12 + 16 + 4 + 4;
-constexpr double kRawSampleBytes = 1.5 * (40 + 8);
+// Before merging: sample (40) and its voxel (8) with vector growth, and the merge's sort key (24).
+constexpr double kRawSampleBytes = 1.5 * (40 + 8) + 24;
 // Per upper surface voxel: sample range, centroid, area, part, bounding sphere (4 floats).
 constexpr double kOracleVoxelBytes = 4 + 12 + 4 + 4 + 16;
 // Per upper node: leaf range (2 x uint32); per level-1 cell: centre and radius.
@@ -66,8 +67,8 @@ double SurfaceVoxels(const io::TriangleMesh& mesh, double s) {
   return 1.0 + kSurfacePerArea * mesh.SurfaceArea() / (s * s);
 }
 
-// The upper samples JawOracle takes: triangle t is split into k^2 pieces, k =
-// ceil(longest edge / spacing) (at least 1).
+// The upper samples JawOracle takes before merging: triangle t is split into
+// k^2 pieces, k = ceil(longest edge / spacing) (at least 1).
 double SampleCount(const io::TriangleMesh& mesh, double spacing) {
   double n = 0.0;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
@@ -152,11 +153,14 @@ MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L, const io::T
     total += Make(std::max(kBoundMinBytes, kBoundBytesPerArea * lower_L.SurfaceArea() / (s * s)), 0.0);
   }
   const double spacing = options.sample_spacing_mm > 0 ? options.sample_spacing_mm : 0.3;
-  const double samples = SampleCount(upper_U, spacing);
+  const double raw_samples = SampleCount(upper_U, spacing);
+  // Merged: at most one per occupied sub-cell of the voxels (edge voxel / k).
+  const double k = std::max(1.0, std::ceil(options.voxel_size_mm / spacing - 1e-9));
+  const double samples = std::min(raw_samples, SurfaceVoxels(upper_U, options.voxel_size_mm / k));
   const double voxels = SurfaceVoxels(upper_U, options.voxel_size_mm);
   const double resident = kSampleBytes * samples + kOracleVoxelBytes * voxels +
                           kOracleNodeBytes * kNodesPerSurface * voxels;
-  total += Make(resident, kRawSampleBytes * samples);
+  total += Make(resident, kRawSampleBytes * raw_samples);
   return total;
 }
 

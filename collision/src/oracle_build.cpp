@@ -9,6 +9,7 @@
 #include <exception>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
 
 #include "occlude/collision/morton.h"
 #include "occlude/collision/oracle.h"
@@ -56,6 +57,73 @@ void SampleTriangle(const io::TriangleMesh& m, std::uint32_t t, double spacing,
       if (i + j < k - 1) out->push_back({o + 2.0 * (u + v) / 3.0, area, t});
     }
   }
+}
+
+// Merges the samples of small triangles so that the surface is sampled at
+// about `spacing` wherever its triangles are finer than that: each upper voxel
+// is split into k^3 sub-cells (k = ceil(voxel / spacing), so a sub-cell's edge
+// is at most the spacing), and the samples of one part in one sub-cell become
+// one: the member nearest their area-weighted centroid (a point of the
+// surface, not a point between curved patches), carrying their total area.
+// Samples outside every voxel (voxel_of < 0) are dropped as before. Output in
+// (voxel, part, sub-cell) order; deterministic (ties keep the first member).
+void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double spacing, std::vector<RawSample>* raw,
+                  std::vector<long>* voxel_of) {
+  const double s = grid.voxel_size_mm;
+  const int k = std::max(1, static_cast<int>(std::ceil(s / spacing - 1e-9)));
+  struct Keyed {
+    long voxel;
+    std::int32_t part;
+    std::int64_t sub;
+    std::uint32_t index;
+  };
+  std::vector<Keyed> keyed;
+  keyed.reserve(raw->size());
+  for (std::size_t i = 0; i < raw->size(); ++i) {
+    const long v = (*voxel_of)[i];
+    if (v < 0) continue;
+    const Eigen::Vector3d corner =
+        grid.origin_F + s * MortonDecode(grid.surface_keys[static_cast<std::size_t>(v)]).cast<double>();
+    std::int64_t sub = 0;
+    for (int a = 3; a-- > 0;) {
+      const double u = ((*raw)[i].p[a] - corner[a]) / s * k;
+      sub = sub * k + std::clamp(static_cast<std::int64_t>(std::floor(u)), std::int64_t{0}, std::int64_t{k - 1});
+    }
+    const std::uint32_t t = (*raw)[i].triangle;
+    keyed.push_back({v, mesh.triangle_part.empty() ? 0 : mesh.triangle_part[t], sub, static_cast<std::uint32_t>(i)});
+  }
+  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
+    return std::tie(a.voxel, a.part, a.sub, a.index) < std::tie(b.voxel, b.part, b.sub, b.index);
+  });
+  std::vector<RawSample> merged;
+  std::vector<long> merged_voxel;
+  for (std::size_t first = 0; first < keyed.size();) {
+    std::size_t last = first + 1;
+    while (last < keyed.size() && keyed[last].voxel == keyed[first].voxel && keyed[last].part == keyed[first].part &&
+           keyed[last].sub == keyed[first].sub) {
+      ++last;
+    }
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    double area = 0.0;
+    for (std::size_t j = first; j < last; ++j) {
+      const RawSample& r = (*raw)[keyed[j].index];
+      weighted += r.area * r.p;
+      area += r.area;
+    }
+    const Eigen::Vector3d centroid = area > 0.0 ? Eigen::Vector3d(weighted / area) : (*raw)[keyed[first].index].p;
+    std::uint32_t best = keyed[first].index;
+    for (std::size_t j = first + 1; j < last; ++j) {
+      const std::uint32_t i = keyed[j].index;
+      if (((*raw)[i].p - centroid).squaredNorm() < ((*raw)[best].p - centroid).squaredNorm()) best = i;
+    }
+    RawSample r = (*raw)[best];
+    r.area = area;
+    merged.push_back(r);
+    merged_voxel.push_back(keyed[first].voxel);
+    first = last;
+  }
+  raw->swap(merged);
+  voxel_of->swap(merged_voxel);
 }
 
 // Centre of the bounding box of points [first, last) (not empty).
@@ -145,6 +213,7 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     SampleTriangle(up, t, spacing, &raw);
     for (std::size_t i = first; i < raw.size(); ++i) voxel_of.push_back(FindSampleVoxel(grid, raw[i].p, t));
   }
+  MergeSamples(grid, up, spacing, &raw, &voxel_of);
   const std::size_t nv = grid.num_surface();
   voxel_sample_begin_.assign(nv + 1, 0);
   for (const long v : voxel_of) {
