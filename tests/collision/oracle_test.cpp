@@ -181,6 +181,56 @@ TEST(OracleValidationTest, RejectsBadFieldBoundOptions) {
   EXPECT_NO_THROW(JawOracle(box, box, options));
 }
 
+// A 4 x 4 mm sheet (facing -y, at y = 0.01 in U) triangulated 20 times finer
+// than the sample spacing, over the slab of OracleBlockTest's lower jaw.
+TriangleMesh FineSheet(int n) {
+  TriangleMesh m;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) m.vertices.emplace_back(-2.0 + 4.0 * i / n, 0.01, -2.0 + 4.0 * j / n);
+  }
+  const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(i + (n + 1) * j); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {  // counter-clockwise seen from below (-y)
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  m.parts.push_back({"sheet", 0});
+  m.triangle_part.assign(m.triangles.size(), 0);
+  m.ComputeFaceNormals();
+  return m;
+}
+
+TEST(OracleSamplesTest, FineTrianglesAreMergedToTheSpacingKeepingAreaAndSurface) {
+  constexpr int kCells = 200;  // 0.02 mm grid: 80,000 triangles of 0.0002 mm^2
+  auto lower = std::make_shared<TriangleMesh>(test::MakeBox({-3, -2, -3}, {3, 0, 3}));
+  auto upper = std::make_shared<TriangleMesh>(FineSheet(kCells));
+  OracleOptions options;
+  options.voxel_size_mm = 0.2;
+  options.sample_spacing_mm = 0.1;  // k = 2: sub-cells of 0.1 mm
+  const JawOracle oracle(lower, upper, options);
+  // One sample per occupied 0.1 mm sub-cell: 40 x 40 of them over the flat sheet
+  // (it crosses no sub-cell boundary in y), against 80,000 triangle centroids.
+  EXPECT_LE(oracle.num_samples(), 1600u);
+  EXPECT_GE(oracle.num_samples(), 1600u);
+  for (AccuracyLevel level : {AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
+    OracleRequest req;
+    req.level = level;
+    OracleResult res;
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation().y() = 0.04;  // gap 0.05 mm: the whole sheet within the band
+    oracle.Query(X, req, &res);
+    EXPECT_NEAR(res.contact_area_mm2, 16.0, 1e-4) << ToString(level);  // every triangle's area, once
+    EXPECT_EQ(res.contact_samples, oracle.num_samples()) << ToString(level);
+    // Merged samples are points of the sheet (members, not centroids between them).
+    EXPECT_NEAR(res.min_distance_mm, 0.05, level == AccuracyLevel::kExact ? 1e-6 : 0.01) << ToString(level);
+    X.translation().y() = -0.04;  // 0.03 mm into the slab
+    oracle.Query(X, req, &res);
+    EXPECT_NEAR(res.max_penetration_mm, 0.03, level == AccuracyLevel::kExact ? 1e-6 : 0.01) << ToString(level);
+    EXPECT_NEAR(res.penetration_area_mm2, 16.0, 1e-4) << ToString(level);
+  }
+}
+
 }  // namespace
 }  // namespace occlude::collision
 
