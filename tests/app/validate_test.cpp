@@ -53,9 +53,7 @@ const ValidateResult& SmallRun(ValidateOptions* used = nullptr) {
   return result;
 }
 
-TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrors) {
-  ValidateOptions options;
-  const ValidateResult& r = SmallRun(&options);
+void CheckRunsAndSummaries(const ValidateResult& r, const ValidateOptions& options) {
   ASSERT_EQ(r.runs.size(), 2u * 2u * static_cast<std::size_t>(options.starts));
   for (const ValidateRun& run : r.runs) {
     const bool closing = run.magnitude.mm == 0.0;
@@ -85,9 +83,7 @@ TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrors) {
   }
 }
 
-TEST(ValidateTest, CsvHasTheDocumentedColumnsAndChartsArePngs) {
-  ValidateOptions options;
-  const ValidateResult& r = SmallRun(&options);
+void CheckCsvAndCharts(const ValidateResult& r, const ValidateOptions& options) {
   std::istringstream csv(ValidateCsv(r));
   std::string header;
   std::getline(csv, header);
@@ -111,6 +107,15 @@ TEST(ValidateTest, CsvHasTheDocumentedColumnsAndChartsArePngs) {
     ASSERT_GT(png.size(), 8u) << file;
     EXPECT_EQ(png.substr(1, 3), "PNG") << file;
   }
+}
+
+// One test for both checks: each ctest test is a process of its own, and the run is the
+// cost (about 75 s each under the sanitizers).
+TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrorsCsvAndCharts) {
+  ValidateOptions options;
+  const ValidateResult& r = SmallRun(&options);
+  CheckRunsAndSummaries(r, options);
+  CheckCsvAndCharts(r, options);
 }
 
 TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {

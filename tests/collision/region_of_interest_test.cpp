@@ -192,8 +192,13 @@ TEST(RegionOfInterest, SameAnswersAsTheWholeJawsNearTheBite) {
   for (const bool open : {true, false}) {
     SCOPED_TRACE(open ? "open lower" : "closed lower");
     const Scene& s = Synthetic(open);
-    const int touching = CompareOracles(s, Request(s, 0.4, 1.5, 0), options, 16, 11);
-    EXPECT_GE(touching, 8) << "the poses should exercise contacts";
+#ifdef OCCLUDE_SANITIZED
+    constexpr int kPoses = 8;  // the sanitizer lane looks for memory errors (the release lane: 16)
+#else
+    constexpr int kPoses = 16;
+#endif
+    const int touching = CompareOracles(s, Request(s, 0.4, 1.5, 0), options, kPoses, 11);
+    EXPECT_GE(touching, kPoses / 2) << "the poses should exercise contacts";
   }
 }
 

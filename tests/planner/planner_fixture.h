@@ -1,5 +1,8 @@
 // Shared fixture of the planner tests: the smallest synthetic jaw pair with a
-// coarse schedule (built once per test program), and a perturbed start.
+// coarse schedule (built once per test program), and a perturbed start. Each
+// ctest test is a process of its own, so what only some tests need (the coarse
+// stage of coarse-to-fine) is built on first use: under the sanitizers an
+// oracle build costs seconds.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -15,7 +18,6 @@ struct SyntheticCase {
   io::SyntheticJawPair pair;
   std::shared_ptr<const io::TriangleMesh> lower, upper;
   OwnedSchedule schedule;         ///< 0.5 mm subvoxel (coarser blurs the locking inclines)
-  OwnedSchedule coarse_to_fine;   ///< 0.8 mm then 0.5 mm subvoxel
   std::vector<Eigen::Vector3d> points_U;
   Eigen::Vector3d pivot_L;
 };
@@ -29,13 +31,23 @@ inline const SyntheticCase& Synthetic() {
     s->lower = std::make_shared<io::TriangleMesh>(s->pair.lower_L);
     s->upper = std::make_shared<io::TriangleMesh>(s->pair.upper_U);
     s->schedule = BuildSchedule(s->lower, s->upper, {0.5}, false);
-    s->coarse_to_fine = BuildSchedule(s->lower, s->upper, {0.8, 0.5}, false);
     const auto& arch = s->schedule.stages.back().oracle->arch();
     s->points_U = ArchReferencePoints_U(*s->upper, s->pair.X_LU, arch);
     s->pivot_L = s->pair.X_LU * s->points_U[0];
     return s;
   }();
   return *c;
+}
+
+/// Coarse to fine: 0.8 mm then 0.5 mm subvoxel (BuildSchedule's stages; the 0.5 mm oracle is
+/// the one of Synthetic().schedule, built with the same options).
+inline const OracleSchedule& CoarseToFine() {
+  static const OracleSchedule* stages = [] {
+    const SyntheticCase& c = Synthetic();
+    static const collision::JawOracle coarse(c.lower, c.upper, StageOracleOptions({}, {0.8, 0.5}, 0));
+    return new OracleSchedule{{&coarse, collision::AccuracyLevel::kSubVoxel}, c.schedule.stages.back()};
+  }();
+  return *stages;
 }
 
 /// A request starting from the ground truth perturbed by t_mm / r_deg along fixed directions.
