@@ -26,6 +26,7 @@ struct BenchArgs {
   std::vector<double> voxels = {0.8, 0.4, 0.2, 0.1};
   std::vector<double> offsets;
   int reps = 15;
+  int rounds = 3;
   std::uint32_t seed = 1;
   double delta_mm = 0.1;
   std::string axis = "auto";
@@ -185,6 +186,7 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   options.voxels_mm = args.voxels;
   if (!args.offsets.empty()) options.offsets_mm = args.offsets;
   options.reps = args.reps;
+  options.rounds = args.rounds;
   options.seed = args.seed;
   options.delta_mm = args.delta_mm;
   options.jitter_deg = args.jitter_deg;
@@ -230,6 +232,10 @@ void AddBenchCommand(CLI::App& app) {
                   "Jittered poses per offset (--paper: 9; --accuracy: timed queries per pose, 3)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--rounds", args->rounds,
+                  "Whole sweeps; each row keeps the fastest round's median and the slowest query")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--seed", args->seed, "Seed of the jitter, the trajectory and the synthetic pair")
       ->capture_default_str();
   cmd->add_option("--delta", args->delta_mm,

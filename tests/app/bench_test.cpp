@@ -73,7 +73,7 @@ std::pair<int, int> PngSize(const std::string& bytes) {
 TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColumns) {
   TempDir tmp;
   const CommandRun r =
-      Occlude("bench --synthetic 5000 --voxel 0.8,0.4 --reps 2 --offsets 1,0,-0.1 --out " +
+      Occlude("bench --synthetic 5000 --voxel 0.8,0.4 --reps 2 --rounds 2 --offsets 1,0,-0.1 --out " +
               (tmp / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string header = ReadText(tmp / "out" / "bench.csv").substr(0, 200);
@@ -136,10 +136,23 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
     EXPECT_TRUE(keys.count("fcl,obbrss,,collide-all,0.000,"));
     EXPECT_TRUE(keys.count("fcl,obbrss,,distance,1.000,"));
     EXPECT_TRUE(keys.count("fcl,obbrss,,build,,trees"));
+    // Speedups from the rows' (merged over the rounds) medians: FCL / IST at the offset.
+    std::map<std::string, double> fcl_us;  // "obb:boolean@0.000" -> median
+    for (const auto& row : rows) {
+      if (row.at("method") == "fcl" && row.at("query") != "build") {
+        fcl_us[row.at("variant") + ":" + row.at("query") + "@" + row.at("offset_mm")] = std::stod(row.at("median_us"));
+      }
+    }
     for (const auto& row : rows) {
       if (row.at("method") == "ist" && row.at("query") == "boolean") {
         EXPECT_EQ(row.at("fcl_reference"), "obb:boolean");
         EXPECT_FALSE(row.at("speedup_vs_fcl").empty());
+      }
+      if (row.at("method") == "ist" && !row.at("fcl_reference").empty()) {
+        const double ratio = fcl_us.at(row.at("fcl_reference") + "@" + row.at("offset_mm")) /
+                             std::stod(row.at("median_us"));
+        // Printed with 2 decimals (the medians too): equal within that rounding.
+        EXPECT_NEAR(std::stod(row.at("speedup_vs_fcl")), ratio, 0.006 + 0.01 * ratio) << row.at("query");
       }
       if (row.at("method") == "fcl" && row.at("query") == "boolean") {
         EXPECT_EQ(row.at("pairs"), row.at("offset_mm") == "1.000" ? "0" : "1")
