@@ -158,7 +158,8 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
             << "), " << machine << "\n";
   const std::filesystem::path out(args.out);
   const std::string subtitle =
-      bc.name + " | " + machine + " | query: thread CPU time, median of jittered poses";
+      bc.name + " | " + machine + " | query: thread CPU time, median of jittered poses (fastest of " +
+      std::to_string(args.rounds) + " rounds)";
 
   if (args.haptic) {
     HapticOptions options;
@@ -197,7 +198,9 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
     std::cerr << "occlude: warning: built without FCL (libfcl-dev): the FCL rows are missing\n";
   }
   const std::vector<BenchRow> rows = RunBench(bc, options);
-  const std::string summary = "case " + bc.name + "; " + machine + "\n" + BenchSummary(rows);
+  const std::string summary = "case " + bc.name + "; " + machine + "; " + std::to_string(options.rounds) +
+                              " rounds of " + std::to_string(options.reps) +
+                              " jittered poses per offset, a row's median the fastest round's\n" + BenchSummary(rows);
   WriteFileAtomic(out / "bench.csv", BenchCsv(rows));
   WriteFileAtomic(out / "bench-summary.txt", summary);
   for (const auto& [file, png] : BenchCharts(rows, subtitle)) WriteFileAtomic(out / file, png);
