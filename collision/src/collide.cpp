@@ -613,9 +613,13 @@ class BoundCellTraversal {
     const Eigen::Matrix3d A = b_.R * inv;
     const Eigen::Vector3d t = (b_.t - bound.origin()) * inv;
     const double grow = req_.reach_mm + kPruneSlackMm;
-    const Eigen::Vector4f* sph = b_.tree->explicit_spheres().compact.data();
+    const Eigen::Vector4f* sph =
+        req_.b_spheres != nullptr ? req_.b_spheres : b_.tree->explicit_spheres().compact.data();
     auto centre = [&](std::uint32_t n) { return Eigen::Vector3d(A * sph[n].head<3>().cast<double>() + t); };
+    // A negative radius (nothing to find in the node) fails every exclusion
+    // test's margin unless handled: such nodes are dropped untested.
     auto far = [&](std::uint32_t n) {
+      if (sph[n].w() < 0.0f) return true;
       ++res_->node_tests;
       return bound.ExcludesAt(centre(n), static_cast<double>(sph[n].w()) + grow);
     };
@@ -640,8 +644,9 @@ class BoundCellTraversal {
         bound.Prefetch(q[k]);
       }
       for (int k = count; k-- > 0;) {
-        ++res_->node_tests;
         const std::uint32_t child = first + static_cast<std::uint32_t>(k);
+        if (sph[child].w() < 0.0f) continue;
+        ++res_->node_tests;
         if (!bound.ExcludesAt(q[k], static_cast<double>(sph[child].w()) + grow)) stack->push_back({child, level - 1});
       }
     }
@@ -789,10 +794,10 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
     side_a.bound = &a_bound;
     const Side side_b(b, X_AB, true);
     BoundCellTraversal traversal(side_a, side_b, request, result);
-    // Only B's spheres matter here: B's explicit records when present.
+    // Only B's spheres matter here: the caller's, else B's explicit records when present.
     SphereMode mode = request.spheres;
     if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = SphereMode::kOptimized;
-    if (mode == SphereMode::kExplicit) {
+    if (request.b_spheres != nullptr || mode == SphereMode::kExplicit) {
       thread_local std::vector<std::pair<std::uint32_t, int>> indices;
       traversal.RunExplicit(&indices);
       return;

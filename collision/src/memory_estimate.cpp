@@ -46,8 +46,9 @@ constexpr double kSampleBytes = 12 + 16 + 4 + 4;
 constexpr double kRawSampleBytes = 1.5 * (40 + 8) + 24;
 // Per upper surface voxel: sample range, centroid, area, part, bounding sphere (4 floats).
 constexpr double kOracleVoxelBytes = 4 + 12 + 4 + 4 + 16;
-// Per upper node: leaf range (2 x uint32); per level-1 cell: centre and radius.
-constexpr double kOracleNodeBytes = 8 + 16.0 / 4.0;
+// Per upper node: leaf range (2 x uint32); per level-1 cell: centre and radius;
+// per node above the leaves: its samples' sphere (4 floats).
+constexpr double kOracleNodeBytes = 8 + 16.0 / 4.0 + 16.0 / 6.0;
 // Voxelize's transient (the (voxel, triangle) pair list and its sort buffer)
 // over its result.
 constexpr double kVoxelizeTransient = 2.5;

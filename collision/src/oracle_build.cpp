@@ -304,6 +304,20 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       }
     }
   }
+  // Per node at or above the cell level: its samples' bounding sphere, the
+  // broad phase's spheres (CellRequest::b_spheres); radius -1 without samples.
+  if (!oct.empty()) {
+    const std::uint32_t end = oct.level_end[static_cast<std::size_t>(std::min(options_.cell_level, oct.top_level))];
+    node_sample_sphere_U_.assign(end, Eigen::Vector4f(0.0f, 0.0f, 0.0f, -1.0f));
+    for (std::uint32_t n = 0; n < end; ++n) {
+      const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
+      if (first == last) continue;
+      const Eigen::Vector3f c = BoxCentre(sample_p_U_, first, last);
+      double radius = 0.0;
+      for (auto i = first; i < last; ++i) radius = std::max(radius, (sample_p_U_[i] - c).cast<double>().norm());
+      node_sample_sphere_U_[n] = Eigen::Vector4f(c.x(), c.y(), c.z(), static_cast<float>(radius * (1.0 + 1e-6) + 1e-6));
+    }
+  }
   // The samples' bounding sphere (box centre, farthest sample), for CountNestedPieces.
   if (!sample_p_U_.empty()) {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -346,6 +360,7 @@ std::size_t JawOracle::MemoryBytes() const {
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +
          (voxel_area_.capacity() + voxel_part_.capacity() + cell_radius_.capacity()) * 4 +
          cell_center_U_.capacity() * sizeof(Eigen::Vector3f) + voxel_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
+         node_sample_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
          (node_leaf_begin_.capacity() + node_leaf_end_.capacity()) * sizeof(std::uint32_t);
 }
 

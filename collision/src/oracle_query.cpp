@@ -74,6 +74,7 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
                            request.penetration_search_mm <= options_.field_bound_depth_mm;
   cells.reach_mm = field_bound ? kFieldBoundSlackMm : reach;
   cells.a_bound = field_bound ? &field_bound_ : nullptr;
+  cells.b_spheres = node_sample_sphere_U_.empty() ? nullptr : node_sample_sphere_U_.data();
   thread_local CellResult found;
   CollectCells(lower_, upper_, X_LU, cells, &found);
   result->cells = found.cells_b.size();

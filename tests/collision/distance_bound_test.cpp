@@ -133,5 +133,91 @@ TEST(DistanceBoundTest, OneSidedCellsCoverEverySurfacePointWithinReach) {
   EXPECT_GT(checked, 50);
 }
 
+// CellRequest::b_spheres: the caller's spheres (here: of random points on B's
+// surface, as the oracle's samples) replace B's; every such point within reach
+// of A's surface lies in a reported cell, and a node without points is never
+// reported.
+TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
+  const io::TriangleMesh sphere = test::MakeSphere({0, 0, 0}, 1.0, 10, 14);
+  const io::TriangleMesh box = test::MakeBox({-0.6, -0.4, -0.5}, {0.7, 0.5, 0.3});
+  SphereTreeOptions o;
+  o.voxelize.voxel_size_mm = 0.1;
+  const SphereTree a = SphereTree::Build(std::make_shared<const io::TriangleMesh>(sphere), o);
+  const SphereTree b = SphereTree::Build(std::make_shared<const io::TriangleMesh>(box), o);
+  const Octree& oct = b.octree();
+  std::mt19937 rng(78);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Points on B's triangles, only on the faces x = -0.6 and z = 0.3 (so that some
+  // nodes hold none), and per node of levels >= 1 their bounding sphere.
+  std::vector<V> points;
+  while (points.size() < 3000) {
+    const std::size_t t = rng() % box.num_triangles();
+    double x = u(rng), y = u(rng);
+    if (x + y > 1) {
+      x = 1 - x;
+      y = 1 - y;
+    }
+    const V p = box.corner(t, 0) + x * (box.corner(t, 1) - box.corner(t, 0)) + y * (box.corner(t, 2) - box.corner(t, 0));
+    if (std::abs(p.x() + 0.6) < 1e-9 || std::abs(p.z() - 0.3) < 1e-9) points.push_back(p);
+  }
+  std::vector<std::vector<V>> in_node(oct.num_nodes());
+  for (const V& p : points) {
+    const Eigen::Vector3i v = b.grid().VoxelOf(p);
+    for (int level = 1; level <= oct.top_level; ++level) {
+      const Eigen::Vector3i c(v.x() >> level, v.y() >> level, v.z() >> level);
+      for (auto n = oct.level_begin[static_cast<std::size_t>(level)]; n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
+        if (oct.coord[n] == c) in_node[n].push_back(p);
+      }
+    }
+  }
+  std::vector<Eigen::Vector4f> spheres(oct.num_nodes(), Eigen::Vector4f(0, 0, 0, -1));
+  for (std::size_t n = 0; n < oct.num_nodes(); ++n) {
+    if (in_node[n].empty()) continue;
+    V c = V::Zero();
+    for (const V& p : in_node[n]) c += p / static_cast<double>(in_node[n].size());
+    double r = 0;
+    for (const V& p : in_node[n]) r = std::max(r, (p - c.cast<float>().cast<double>()).norm());
+    spheres[n] << c.cast<float>(), static_cast<float>(r + 1e-6);
+  }
+  constexpr double kReach = 0.15;
+  int checked = 0, empty_nodes = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
+    X_AB.linear() = Eigen::AngleAxisd(2.0 * u(rng), V(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    X_AB.translation() = V(1.4 + 0.3 * u(rng), 0.2 * u(rng), 0.1 * u(rng));
+    for (const int level : {1, 2}) {
+      CellRequest req;
+      req.reach_mm = kReach;
+      req.cell_level = level;
+      req.distance_bound = true;
+      req.b_spheres = spheres.data();
+      CellResult res;
+      CollectCells(a, b, X_AB, req, &res);
+      std::set<std::uint32_t> cells(res.cells_b.begin(), res.cells_b.end());
+      ASSERT_EQ(cells.size(), res.cells_b.size()) << "cell reported twice";
+      for (const auto node : res.cells_b) EXPECT_FALSE(in_node[node].empty()) << "node without points reported";
+      for (auto n = oct.level_begin[static_cast<std::size_t>(level)]; n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
+        if (in_node[n].empty()) {
+          ++empty_nodes;
+          continue;
+        }
+        for (const V& p_B : in_node[n]) {
+          const V p_A = X_AB * p_B;
+          double d2 = std::numeric_limits<double>::infinity();
+          for (std::size_t k = 0; k < sphere.num_triangles(); ++k) {
+            d2 = std::min(d2, ClosestPointOnTriangle(p_A, sphere.corner(k, 0), sphere.corner(k, 1), sphere.corner(k, 2))
+                                  .squared_distance);
+          }
+          if (d2 > kReach * kReach) continue;
+          ++checked;
+          ASSERT_TRUE(cells.count(n)) << "trial " << trial << " level " << level;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 50);
+  EXPECT_GT(empty_nodes, 0);
+}
+
 }  // namespace
 }  // namespace occlude::collision

@@ -131,6 +131,13 @@ struct CellRequest {
   /// A's own, e.g. one over only the voxels of A where some value of interest
   /// can occur; reach_mm then counts from its cubes. Null: A's bound.
   const DistanceBound* a_bound = nullptr;
+  /// With distance_bound (any sphere mode): per B node, a sphere (centre in
+  /// B's frame, radius w) holding what the caller looks for in it, e.g. the
+  /// oracle's surface samples, tested instead of the node's voxel-cube sphere
+  /// (tighter: the samples lie on the surface, the cubes stick out of it);
+  /// w < 0: nothing in the node, never reported. Every such point within
+  /// reach_mm of A's voxel cubes lies in a reported cell. Null: B's spheres.
+  const Eigen::Vector4f* b_spheres = nullptr;
 };
 struct CellResult {
   std::vector<std::uint32_t> cells_b;  ///< octree node indices of B, in traversal order

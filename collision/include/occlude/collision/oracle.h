@@ -4,8 +4,8 @@
 //
 // How: the upper surface is sampled (points with area weights, grouped by the
 // upper's surface voxels). The one-sided sphere-tree descent (CollectCells)
-// finds the upper octree cells whose voxels come within reach of the lower's
-// voxels; only the samples of those cells are evaluated, against the lower
+// finds the upper octree cells whose samples' bounding spheres come within
+// reach of the lower's voxels; only the samples of those cells are evaluated, against the lower
 // jaw's signed distance (narrow-band field, or exact triangles). No query
 // touches all samples, voxels or triangles.
 //
@@ -218,6 +218,10 @@ class JawOracle {
   // samples' bounding box in U and their largest distance from it (0: none).
   std::vector<Eigen::Vector3f> cell_center_U_;
   std::vector<float> cell_radius_;
+  /// Per node at or above the cell level (nodes [0, level_end of the cell
+  /// level)): its samples' bounding sphere in U (radius -1: no samples), the
+  /// spheres the broad phase tests (tighter than the nodes' voxel cubes).
+  std::vector<Eigen::Vector4f> node_sample_sphere_U_;
   // Per connected component of the upper surface: one of its samples and how many it has.
   struct ComponentSamples {
     std::uint32_t sample;
