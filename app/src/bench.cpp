@@ -11,7 +11,7 @@
 
 #include "bench_poses.h"
 #include "chart.h"
-#include "commands.h"
+#include "user_error.h"
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <thread>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"

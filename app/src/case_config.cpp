@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "case_config_toml.h"
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/synthetic_jaws.h"
 
 namespace occlude::app {

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "case_config.h"
-#include "commands.h"
+#include "user_error.h"
 #include "pose_file.h"
 
 namespace occlude::app::toml_config {

@@ -3,7 +3,7 @@
 
 #include <iostream>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"
 

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "commands.h"
+#include "user_error.h"
 #include "jaw_checks.h"
 #include "memory_guard.h"
 #include "occlude/collision/region_of_interest.h"

@@ -9,13 +9,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace occlude::app {
+#include "user_error.h"
 
-/// An error the user caused (bad file, bad option): printed as one line.
-class UserError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace occlude::app {
 
 /// Validator for a length in mm: a finite number in (lo, hi], or [lo, hi] when
 /// `lo_inclusive`; the message says what the option must be.

@@ -10,7 +10,6 @@
 // option (AddMemoryBudgetOption) and calls CheckMemory before building.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -19,6 +18,10 @@
 
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/io/triangle_mesh.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace occlude::app {
 

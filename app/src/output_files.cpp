@@ -7,7 +7,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "commands.h"
+#include "user_error.h"
 
 namespace occlude::app {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <thread>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/planner/evaluation.h"
 
 namespace occlude::app {

@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/collision/voxel_grid.h"
 #include "report_colours.h"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <iostream>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"
 

@@ -3,7 +3,7 @@
 
 #include <thread>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"
 #include "report_document.h"

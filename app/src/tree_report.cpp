@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "commands.h"
+#include "user_error.h"
 
 namespace occlude::app {
 

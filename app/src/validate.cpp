@@ -10,7 +10,7 @@
 #include <sstream>
 #include <thread>
 
-#include "commands.h"
+#include "user_error.h"
 #include "timing.h"
 
 namespace occlude::app {

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "case_config.h"
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
 

@@ -11,7 +11,7 @@
 #include <random>
 
 #include "case_config.h"
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
 

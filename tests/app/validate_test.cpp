@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "commands.h"
+#include "user_error.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "run_occlude.h"
 #include "test_common.h"
