@@ -48,6 +48,10 @@ struct BenchOptions {
   std::ostream* log = nullptr;  ///< progress lines
 };
 
+/// The sphere modes the benchmarks time, in their order.
+inline constexpr collision::SphereMode kSphereModes[] = {collision::SphereMode::kSimple, collision::SphereMode::kOptimized,
+                                                         collision::SphereMode::kExplicit};
+
 /// One CSV row. Build rows: median_us = max_us = wall build time, bytes = memory.
 struct BenchRow {
   std::string method;     ///< "ist" or "fcl"

@@ -13,6 +13,7 @@
 #include "bench_accuracy_score.h"
 #include "bench_accuracy_truth.h"
 #include "bench_poses.h"
+#include "percentile.h"
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
@@ -22,9 +23,6 @@ namespace {
 
 using collision::AccuracyLevel;
 using collision::SphereMode;
-
-constexpr SphereMode kModes[] = {SphereMode::kSimple, SphereMode::kOptimized,
-                                 SphereMode::kExplicit};
 
 void Log(const AccuracyOptions& options, const std::string& line) {
   if (options.log) *options.log << "accuracy: " << line << std::endl;
@@ -41,12 +39,7 @@ void TimeInto(std::vector<double>* us, int reps, F&& f) {
   }
 }
 
-// Nearest-rank percentile of a sorted sample (q in (0, 1]); NaN when empty.
-double Percentile(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
-}
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A row being measured: its times and its score.
 struct Method {
@@ -70,13 +63,13 @@ AccuracyRow Finish(Method m, int poses) {
   AccuracyRow& r = m.row;
   r.poses = poses;
   r.us = Summarize(&m.us);  // sorts
-  r.p95_us = Percentile(m.us, 0.95);
+  r.p95_us = NearestRankPercentile(m.us, 0.95, kNaN);
   std::sort(m.score.errors.begin(), m.score.errors.end());
-  r.median_err_mm = Percentile(m.score.errors, 0.5);
-  r.p95_err_mm = Percentile(m.score.errors, 0.95);
+  r.median_err_mm = NearestRankPercentile(m.score.errors, 0.5, kNaN);
+  r.p95_err_mm = NearestRankPercentile(m.score.errors, 0.95, kNaN);
   r.max_err_mm = m.score.errors.empty() ? r.p95_err_mm : m.score.errors.back();
   std::sort(m.score.pen_errors.begin(), m.score.pen_errors.end());
-  r.pen_err_median_mm = Percentile(m.score.pen_errors, 0.5);
+  r.pen_err_median_mm = NearestRankPercentile(m.score.pen_errors, 0.5, kNaN);
   r.pen_err_max_mm = m.score.pen_errors.empty() ? r.pen_err_median_mm : m.score.pen_errors.back();
   r.claims = m.score.claims;
   r.unscored = m.score.unscored;
@@ -177,7 +170,7 @@ void MeasurePairs(const Study& st, const collision::SphereTree& lower,
   req.exact = exact;
   collision::CollisionResult results[3];
   for (std::size_t m = 0; m < 3; ++m) {
-    req.spheres = kModes[m];
+    req.spheres = kSphereModes[m];
     TimeInto(&(*group)[m].us, st.options.reps,
              [&] { collision::Collide(lower, upper, st.poses[k], req, &results[m]); });
   }
@@ -193,7 +186,7 @@ void MeasurePairs(const Study& st, const collision::SphereTree& lower,
       MergeScore(first, &(*group)[m].score);
       continue;
     }
-    Log(st.options, std::string("warning: ") + collision::ToString(kModes[m]) +
+    Log(st.options, std::string("warning: ") + collision::ToString(kSphereModes[m]) +
                         " spheres answered differently from explicit; scored separately");
     ScoreAnswer(answer(results[m]), &st.truths[k], &(*group)[m].score);
   }
@@ -211,7 +204,7 @@ void MeasureVoxelSize(const Study& st, double voxel, std::vector<AccuracyRow>* r
   for (const auto& [level, name] : kLevels) {
     oracle_rows.push_back(NewMethod("ist", "explicit", "oracle", name, voxel));
   }
-  for (const SphereMode mode : kModes) {
+  for (const SphereMode mode : kSphereModes) {
     voxel_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "voxel", voxel));
     exact_rows.push_back(NewMethod("ist", collision::ToString(mode), "pairs", "exact", voxel));
   }

@@ -12,17 +12,12 @@
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "percentile.h"
 #include "text_format.h"
 
 namespace occlude::app {
 namespace {
 
-double Percentile(std::vector<double> sorted, double q) {
-  if (sorted.empty()) return 0.0;
-  std::sort(sorted.begin(), sorted.end());
-  const auto i = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size()))) - 1;
-  return sorted[std::min(sorted.size() - 1, i)];
-}
 
 // Replays the trajectory with one `query` per tick. Tick k is released at
 // t0 + k * period (busy-waiting, as a haptic servo loop does); it misses its
@@ -54,11 +49,11 @@ HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double ma
     ++row.ticks;
     if (done > stop) break;
   }
-  row.p50_us = Percentile(latency_us, 0.5);
-  row.p99_us = Percentile(latency_us, 0.99);
-  row.p999_us = Percentile(latency_us, 0.999);
-  row.max_us = Percentile(latency_us, 1.0);
-  row.cpu_p50_us = Percentile(cpu_us, 0.5);
+  row.p50_us = NearestRankPercentile(latency_us, 0.5, 0.0);
+  row.p99_us = NearestRankPercentile(latency_us, 0.99, 0.0);
+  row.p999_us = NearestRankPercentile(latency_us, 0.999, 0.0);
+  row.max_us = NearestRankPercentile(latency_us, 1.0, 0.0);
+  row.cpu_p50_us = NearestRankPercentile(cpu_us, 0.5, 0.0);
   return row;
 }
 

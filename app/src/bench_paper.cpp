@@ -12,8 +12,6 @@
 namespace occlude::app {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 void Log(const PaperOptions& options, const std::string& line) {
   if (options.log) *options.log << "paper: " << line << std::endl;
 }
@@ -161,7 +159,7 @@ PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::st
       level.nodes = ls.nodes;
       level.simple_mm3 = ls.simple_volume_mm3;
       level.optimized_mm3 = ls.optimized_volume_mm3;
-      level.unit_mm3 = std::sqrt(3.0) / 2.0 * kPi * std::pow(std::ldexp(s, ls.level), 3.0);
+      level.unit_mm3 = std::sqrt(3.0) / 2.0 * EIGEN_PI * std::pow(std::ldexp(s, ls.level), 3.0);
       result.levels.push_back(level);
     }
   }

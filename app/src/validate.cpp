@@ -10,8 +10,9 @@
 #include <sstream>
 #include <thread>
 
-#include "user_error.h"
+#include "percentile.h"
 #include "timing.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -29,12 +30,6 @@ Eigen::Vector3d InBall(std::mt19937& rng, double radius) {
   return radius * std::cbrt(u(rng)) * d.normalized();
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
-}
 
 struct Job {
   SolverKind solver;
@@ -195,12 +190,12 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       const double n = static_cast<double>(group.size());
       row.success_rate = ok / n;
       row.within_consensus = near / n;
-      row.median_err_mm = Percentile(em, 0.5);
-      row.p95_err_mm = Percentile(em, 0.95);
-      row.median_err_deg = Percentile(ed, 0.5);
-      row.p95_err_deg = Percentile(ed, 0.95);
-      row.median_seconds = Percentile(sec, 0.5);
-      row.median_consensus_mm = Percentile(cons, 0.5);
+      row.median_err_mm = NearestRankPercentile(em, 0.5, 0.0);
+      row.p95_err_mm = NearestRankPercentile(em, 0.95, 0.0);
+      row.median_err_deg = NearestRankPercentile(ed, 0.5, 0.0);
+      row.p95_err_deg = NearestRankPercentile(ed, 0.95, 0.0);
+      row.median_seconds = NearestRankPercentile(sec, 0.5, 0.0);
+      row.median_consensus_mm = NearestRankPercentile(cons, 0.5, 0.0);
       row.medoid_error = group[medoid]->error;
       row.medoid_contact_mm2 = group[medoid]->contact_area_mm2;
       result.summary.push_back(row);

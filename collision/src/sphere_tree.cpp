@@ -7,13 +7,10 @@
 #include <limits>
 
 #include "occlude/collision/sphere_table.h"
+#include "seconds_since.h"
 
 namespace occlude::collision {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 double SphereVolume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
@@ -100,7 +97,6 @@ const char* ToString(SphereMode mode) {
   return "?";
 }
 
-
 Eigen::Vector3d SphereTree::CubeCenter(std::size_t node, int level) const {
   return grid_.origin_F +
          edge(level) * (octree_.coord[node].cast<double>() + Eigen::Vector3d::Constant(0.5));
@@ -125,11 +121,11 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
   tree.mesh_ = std::move(mesh_F);
   auto start = std::chrono::steady_clock::now();
   tree.grid_ = Voxelize(*tree.mesh_, options.voxelize, &tree.stats_.voxelize);
-  tree.stats_.seconds_voxelize = SecondsSince(start);
+  tree.stats_.seconds_voxelize = detail::SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
   tree.octree_ = BuildOctree(tree.grid_);
-  tree.stats_.seconds_octree = SecondsSince(start);
+  tree.stats_.seconds_octree = detail::SecondsSince(start);
 
   const Octree& oct = tree.octree_;
   if (options.build_explicit && !oct.empty()) {
@@ -160,13 +156,13 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
       while (static_cast<double>(r) < e.radius + grow) r = std::nextafter(r, std::numeric_limits<float>::infinity());
       ex.compact[i] = Eigen::Vector4f(c.x(), c.y(), c.z(), r);
     }
-    tree.stats_.seconds_explicit = SecondsSince(start);
+    tree.stats_.seconds_explicit = detail::SecondsSince(start);
   }
 
   if (options.build_distance_bound && !oct.empty()) {
     start = std::chrono::steady_clock::now();
     tree.bound_ = DistanceBound::Build(tree.grid_);
-    tree.stats_.seconds_bound = SecondsSince(start);
+    tree.stats_.seconds_bound = detail::SecondsSince(start);
   }
 
   SphereTreeStats& st = tree.stats_;

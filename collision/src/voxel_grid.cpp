@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "occlude/collision/morton.h"
+#include "seconds_since.h"
 #include "voxelize_detail.h"
 
 namespace occlude::collision {
@@ -161,10 +162,6 @@ std::size_t ToBytes(const SizeModel& m) {
   return static_cast<std::size_t>(std::min(m.Bytes(), 1e18));
 }
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 Eigen::Vector3i VoxelGrid::VoxelOf(const Eigen::Vector3d& p_F) const {
@@ -238,16 +235,16 @@ VoxelGrid Voxelize(const io::TriangleMesh& mesh, const VoxelizeOptions& options,
 
   auto start = std::chrono::steady_clock::now();
   detail::BuildSurface(mesh, frame, static_cast<std::size_t>(1.25 * model.pairs), &grid, &st);
-  st.seconds_surface = SecondsSince(start);
+  st.seconds_surface = detail::SecondsSince(start);
   if (options.classify_proximity) {
     start = std::chrono::steady_clock::now();
     detail::BuildProximity(mesh, frame, options.proximity_layers, &grid);
-    st.seconds_proximity = SecondsSince(start);
+    st.seconds_proximity = detail::SecondsSince(start);
   }
   if (options.classify_interior) {
     start = std::chrono::steady_clock::now();
     detail::BuildInterior(mesh, frame, &grid, &st);
-    st.seconds_interior = SecondsSince(start);
+    st.seconds_interior = detail::SecondsSince(start);
   }
   st.surface_voxels = grid.surface_keys.size();
   st.proximity_voxels = grid.proximity_keys.size();

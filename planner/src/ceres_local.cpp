@@ -14,12 +14,6 @@
 namespace occlude::planner::detail {
 namespace {
 
-Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return m;
-}
-
 Eigen::Matrix3d Exp(const Eigen::Vector3d& w) {
   const double a = w.norm();
   return a > 0 ? Eigen::AngleAxisd(a, w / a).toRotationMatrix() : Eigen::Matrix3d::Identity();

@@ -11,13 +11,13 @@ namespace occlude::planner {
 namespace detail {
 namespace {
 constexpr double kRadPerDeg = M_PI / 180.0;
+}  // namespace
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
   Eigen::Matrix3d m;
   m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
   return m;
 }
-}  // namespace
 
 Eigen::Matrix3d LeftJacobian(const Eigen::Vector3d& w) {
   const double t = w.norm();

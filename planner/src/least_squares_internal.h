@@ -35,6 +35,8 @@ struct SurfaceResiduals::Impl {
 };
 
 namespace detail {
+/// The cross-product matrix of w: Hat(w) v = w x v.
+Eigen::Matrix3d Hat(const Eigen::Vector3d& w);
 /// Left Jacobian of SO(3) and its inverse at rotation vector w (rad).
 Eigen::Matrix3d LeftJacobian(const Eigen::Vector3d& w);
 Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& w);

@@ -58,8 +58,6 @@ class AccuracyCommandTest : public ::testing::Test {
 TempDir* AccuracyCommandTest::dir_ = nullptr;
 CommandRun* AccuracyCommandTest::run_ = nullptr;
 
-double Value(const CsvRow& r, const std::string& column) { return std::stod(r.at(column)); }
-
 TEST_F(AccuracyCommandTest, HasTheDocumentedColumnsAndDefinitions) {
   std::vector<std::string> header;
   ReadCsvRows(Out("accuracy.csv"), &header);

@@ -89,6 +89,9 @@ inline std::vector<CsvRow> ReadCsvRows(const std::filesystem::path& file,
   return rows;
 }
 
+/// The number in `column` of a row.
+inline double Value(const CsvRow& r, const std::string& column) { return std::stod(r.at(column)); }
+
 /// Width and height from a PNG's IHDR chunk; {0, 0} when not a PNG.
 inline std::pair<int, int> PngFileSize(const std::filesystem::path& file) {
   const std::string bytes = ReadFileText(file);

@@ -20,8 +20,6 @@
 namespace occlude::test {
 namespace {
 
-double Value(const CsvRow& r, const std::string& column) { return std::stod(r.at(column)); }
-
 TEST(PaperCommandTest, WritesTheBuildFiguresOnASyntheticJaw) {
   TempDir tmp;
   const CommandRun r = Occlude("bench --paper --synthetic 5000 --voxel 10,5,2 --no-sweep --out " +

@@ -18,7 +18,7 @@ using V = Eigen::Vector3d;
 
 /// Corner values are floats of distances < 2 mm and local coordinates floats
 /// of at most 9 voxels: rounding stays below this.
-constexpr double kFloatMm = 2e-6;
+constexpr double kSamplerFloatMm = 2e-6;
 /// A point from a float offset lands within ~1e-7 voxel of the double one;
 /// times a gradient of at most sqrt(3), plus the corners' rounding.
 constexpr double kOffsetMm = 1e-5;
@@ -55,8 +55,8 @@ TEST(SdfSampler, AbsolutePointsMatchInterpolateAndCellValue) {
     ASSERT_EQ(sampler.CellValue(g.base, g.local, &c), k_ref) << i;
     if (!k_ref) continue;
     ++known;
-    EXPECT_NEAR(static_cast<double>(d), d_ref, kFloatMm) << i;
-    EXPECT_NEAR(c, c_ref, kFloatMm) << i;
+    EXPECT_NEAR(static_cast<double>(d), d_ref, kSamplerFloatMm) << i;
+    EXPECT_NEAR(c, c_ref, kSamplerFloatMm) << i;
     EXPECT_LT((grad.cast<double>() - g_ref).norm(), kFloatGradient) << i;
   }
   EXPECT_GT(known, 2000);  // the band around the sphere is hit often
