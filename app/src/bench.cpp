@@ -22,9 +22,6 @@ namespace {
 
 using collision::SphereMode;
 
-constexpr SphereMode kModes[] = {SphereMode::kSimple, SphereMode::kOptimized,
-                                 SphereMode::kExplicit};
-
 void Log(const BenchOptions& options, const std::string& line) {
   if (options.log) *options.log << "bench: " << line << std::endl;
 }
@@ -39,7 +36,7 @@ Summary TimePoses(const std::vector<Eigen::Isometry3d>& poses, std::size_t count
   count = std::min(count, poses.size());
   // Warm-up: the first queries after another kind of query (a 35 ms pair query
   // sweeps the caches) run several times slower; a few untimed ones first.
-  for (std::size_t i = 0; i < kWarmUpQueries; ++i) query(poses[i % count]);
+  for (std::size_t i = 0; i < std::min(kWarmUpQueries, count); ++i) query(poses[i]);
   for (std::size_t i = 0; i < count; ++i) {
     const double t0 = ThreadCpuSeconds();
     query(poses[i]);
@@ -148,7 +145,7 @@ std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& opt
           ls.seconds_voxelize + ls.seconds_octree + us.seconds_voxelize + us.seconds_octree;
       const std::size_t implicit_bytes =
           ls.total_bytes() - ls.bytes_explicit + us.total_bytes() - us.bytes_explicit;
-      for (const SphereMode mode : kModes) {
+      for (const SphereMode mode : kSphereModes) {
         BenchRow build = MakeRow("ist", collision::ToString(mode), "trees");
         build.voxel_mm = voxel;
         build.query = "build";
@@ -182,7 +179,7 @@ std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& opt
         return row;
       };
       collision::CollisionResult res;
-      for (const SphereMode mode : kModes) {
+      for (const SphereMode mode : kSphereModes) {
         collision::CollisionRequest req;
         req.spheres = mode;
         req.first_only = true;
@@ -196,7 +193,7 @@ std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& opt
         speedup(&row, "obb:boolean");
         rows.push_back(row);
       }
-      for (const SphereMode mode : kModes) {
+      for (const SphereMode mode : kSphereModes) {
         collision::CollisionRequest req;
         req.spheres = mode;
         req.delta_mm = options.delta_mm;

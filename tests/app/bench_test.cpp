@@ -73,7 +73,7 @@ std::pair<int, int> PngSize(const std::string& bytes) {
 TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColumns) {
   TempDir tmp;
   const CommandRun r =
-      Occlude("bench --synthetic 5000 --voxel 0.8,0.4 --reps 2 --rounds 2 --offsets 1,0,-0.1 --out " +
+      Occlude("bench --synthetic 5000 --voxel 0.8,0.4 --reps 1 --rounds 2 --offsets 1,0,-0.1 --out " +
               (tmp / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string header = ReadText(tmp / "out" / "bench.csv").substr(0, 200);
