@@ -361,6 +361,61 @@ VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
   return out;
 }
 
+VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) const {
+  if (split < 1 || split > 8) throw std::invalid_argument("BandCellsWithin: split must be in 1..8");
+  const VoxelGrid voxels = BandVoxelsWithin(depth, value);
+  if (split == 1) return voxels;
+  VoxelGrid out;
+  out.voxel_size_mm = s_ / split;
+  out.origin_F = voxels.origin_F;
+  out.dims = split * voxels.dims;
+  const int n = split + 1;
+  std::vector<float> at(static_cast<std::size_t>(n * n * n));  // the voxel's field on the cells' corners
+  for (const std::uint64_t key : voxels.surface_keys) {
+    const Eigen::Vector3i g = MortonDecode(key);  // index in `voxels` (shifted)
+    const Eigen::Vector3i v = g - Eigen::Vector3i::Constant(shift_);
+    const bool surface = (v.array() >= 0).all() && surface_.Rank(MortonEncode(v)) != detail::KeyIndexHash::kNotFound;
+    const detail::BrickSet::Brick* brick = band_.FindAt(static_cast<std::uint32_t>(g.x()) >> 2,
+                                                        static_cast<std::uint32_t>(g.y()) >> 2,
+                                                        static_cast<std::uint32_t>(g.z()) >> 2);
+    if (brick == nullptr) continue;  // not a band voxel (cannot happen: the keys come from the band)
+    const float* c = corner_bricks_[static_cast<std::size_t>(brick - band_.bricks().data())].value + (g.x() & 3) +
+                     5 * (g.y() & 3) + 25 * (g.z() & 3);
+    for (int z = 0; z < n; ++z) {
+      for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+          const float fx = static_cast<float>(x) / static_cast<float>(split);
+          const float fy = static_cast<float>(y) / static_cast<float>(split);
+          const float fz = static_cast<float>(z) / static_cast<float>(split);
+          const float a0 = c[0] + fx * (c[1] - c[0]), a1 = c[5] + fx * (c[6] - c[5]);
+          const float a2 = c[25] + fx * (c[26] - c[25]), a3 = c[30] + fx * (c[31] - c[30]);
+          const float b0 = a0 + fy * (a1 - a0), b1 = a2 + fy * (a3 - a2);
+          at[static_cast<std::size_t>(x + n * (y + n * z))] = b0 + fz * (b1 - b0);
+        }
+      }
+    }
+    for (int z = 0; z < split; ++z) {
+      for (int y = 0; y < split; ++y) {
+        for (int x = 0; x < split; ++x) {
+          bool keep = surface;
+          if (!keep) {
+            float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
+            for (int o = 0; o < 8; ++o) {
+              const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
+              lowest = std::min(lowest, f);
+              highest = std::max(highest, f);
+            }
+            keep = lowest <= value && highest >= -depth;
+          }
+          if (keep) out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+        }
+      }
+    }
+  }
+  std::sort(out.surface_keys.begin(), out.surface_keys.end());
+  return out;
+}
+
 bool NarrowBandSdf::CellValue(const Eigen::Vector3d& p_F, double* distance) const {
   Eigen::Vector3f f;
   const float* v = Locate(p_F, &f);

@@ -9,7 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "occlude/io/mesh_io.h"
@@ -301,36 +304,64 @@ TEST(NarrowBand, CornerValuesAreExact) {
   EXPECT_GT(checked, 1500);
 }
 
-TEST(NarrowBand, BandVoxelsWithinHoldEveryPointWhoseValueLiesInTheRange) {
-  // Against the field itself: every point whose interpolated value lies in
-  // [-depth, value] lies in a voxel of the set, every surface voxel is in it,
-  // and the set leaves out some band voxels (else it proves nothing).
+TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
+  // Against the field itself, for whole voxels (BandVoxelsWithin, split 1) and
+  // for voxels split 2 and 3 ways: every point whose interpolated value lies
+  // in [-depth, value] lies in a cell of the set, every cell of every surface
+  // voxel is in it, every cell lies in a voxel of the whole-voxel set, and the
+  // set leaves out some band (else it proves nothing); finer cells leave out
+  // more volume.
   io::TriangleMesh mesh = test::MakeSphere(V(0, 0, 0), 1.5, 12, 20);
   mesh.Append(test::MakeBox(V(0.8, -0.4, -0.3), V(2.0, 0.5, 0.6)));
   const double s = 0.1;
   const VoxelGrid grid = Grid(mesh, s);
   const NarrowBandSdf sdf = NarrowBandSdf::Build(std::make_shared<const io::TriangleMesh>(mesh), grid, {});
   const float depth = 0.05f, value = 0.03f;
-  const VoxelGrid set = sdf.BandVoxelsWithin(depth, value);
-  ASSERT_TRUE(std::is_sorted(set.surface_keys.begin(), set.surface_keys.end()));
-  ASSERT_LT(set.surface_keys.size(), sdf.num_band_voxels());
-  auto in_set = [&](const Eigen::Vector3i& v) {
-    return (v.array() >= 0).all() &&
-           std::binary_search(set.surface_keys.begin(), set.surface_keys.end(), MortonEncode(v));
-  };
+  const VoxelGrid voxels = sdf.BandVoxelsWithin(depth, value);
   const Eigen::Vector3i shift = Eigen::Vector3i::Constant(sdf.band_key_shift());
-  for (const std::uint64_t k : grid.surface_keys) EXPECT_TRUE(in_set(MortonDecode(k) + shift));
-  NearSurfaceSampler sampler(mesh, 8);
-  int inside = 0;
-  for (int i = 0; i < 4000; ++i) {
-    const V p = sampler.Next(sdf.band_mm());
-    double d = 0.0;
-    if (!sdf.Interpolate(p, &d) || d < -static_cast<double>(depth) || d > static_cast<double>(value)) continue;
-    EXPECT_EQ(set.VoxelOf(p), grid.VoxelOf(p) + shift);
-    EXPECT_TRUE(in_set(set.VoxelOf(p))) << p.transpose() << " at " << d;
-    ++inside;
+  EXPECT_THROW(sdf.BandCellsWithin(depth, value, 0), std::invalid_argument);
+  double previous_volume = std::numeric_limits<double>::infinity();
+  for (const int split : {1, 2, 3}) {
+    SCOPED_TRACE("split " + std::to_string(split));
+    const VoxelGrid set = sdf.BandCellsWithin(depth, value, split);
+    ASSERT_TRUE(std::is_sorted(set.surface_keys.begin(), set.surface_keys.end()));
+    EXPECT_NEAR(set.voxel_size_mm, s / split, 1e-12);
+    EXPECT_LT(set.surface_keys.size(), sdf.num_band_voxels() * split * split * split);
+    if (split == 1) {
+      EXPECT_EQ(set.surface_keys, voxels.surface_keys);
+    }
+    auto in_set = [&](const Eigen::Vector3i& c) {
+      return (c.array() >= 0).all() &&
+             std::binary_search(set.surface_keys.begin(), set.surface_keys.end(), MortonEncode(c));
+    };
+    for (const std::uint64_t k : set.surface_keys) {
+      const Eigen::Vector3i c = MortonDecode(k);
+      const Eigen::Vector3i v(c.x() / split, c.y() / split, c.z() / split);
+      ASSERT_TRUE(std::binary_search(voxels.surface_keys.begin(), voxels.surface_keys.end(), MortonEncode(v)));
+    }
+    for (const std::uint64_t k : grid.surface_keys) {
+      const Eigen::Vector3i v = MortonDecode(k) + shift;
+      for (int o = 0; o < split * split * split; ++o) {
+        EXPECT_TRUE(in_set(split * v + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+      }
+    }
+    NearSurfaceSampler sampler(mesh, 8);
+    int inside = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const V p = sampler.Next(sdf.band_mm());
+      double d = 0.0;
+      if (!sdf.Interpolate(p, &d) || d < -static_cast<double>(depth) || d > static_cast<double>(value)) continue;
+      if (split == 1) {
+        EXPECT_EQ(set.VoxelOf(p), grid.VoxelOf(p) + shift);
+      }
+      EXPECT_TRUE(in_set(set.VoxelOf(p))) << p.transpose() << " at " << d;
+      ++inside;
+    }
+    EXPECT_GT(inside, 200);
+    const double volume = static_cast<double>(set.surface_keys.size()) * std::pow(set.voxel_size_mm, 3);
+    EXPECT_LT(volume, previous_volume);
+    previous_volume = volume;
   }
-  EXPECT_GT(inside, 200);
 }
 
 TEST(NarrowBand, FalseOutsideTheBand) {

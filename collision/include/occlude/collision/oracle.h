@@ -73,7 +73,8 @@ struct OracleOptions {
   /// Sub-voxel and voxel-level queries whose outer band (the contact band, or
   /// the residual band with residuals) is at most field_bound_mm and whose
   /// penetration search is at most field_bound_depth_mm prune the upper tree
-  /// against the lower's field bound: the surface voxels and the band voxels
+  /// against the lower's field bound: the surface voxels and the cells of the
+  /// band voxels (each voxel split JawOracle::kFieldBoundSplit ways per axis)
   /// where the field takes values in [-depth, field_bound_mm]. Every sample
   /// whose value lies in that range is in one of them, so the broad phase
   /// needs no reach and reports no cell that lies wholly beyond the contact
@@ -161,6 +162,13 @@ struct OracleResult {
 /// and the upper's samples, built once; Query() is const and thread-safe.
 class JawOracle {
  public:
+  /// The field bound's cells are the voxels split this many ways per axis:
+  /// its cubes then reach at most half a voxel diagonal beyond the band (0.17
+  /// mm at 0.2 mm voxels) instead of a whole one, so fewer upper cells come
+  /// within reach (a-bite-3shape at 0.2 mm, +0.2 mm apart: 1305 -> 635 cells
+  /// and 153 -> 123 us; build +0.65 s, +21 MB).
+  static constexpr int kFieldBoundSplit = 2;
+
   JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
             std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options = {});
 

@@ -235,6 +235,14 @@ class NarrowBandSdf {
   /// voxel size, origin shifted to match; only voxel_size_mm, origin_F, dims
   /// and surface_keys are set (enough for DistanceBound::Build).
   VoxelGrid BandVoxelsWithin(float depth, float value) const;
+  /// The same at a finer grain: each band voxel split into split^3 cells (voxel
+  /// size / split), keeping the cells where the trilinear field takes values in
+  /// [-depth, value] (a trilinear function's extremes over a cell lie at its
+  /// corners, whose values are interpolated from the voxel's) and every cell
+  /// of the surface voxels. Cell (a, b, c) of voxel (i, j, k) is cell
+  /// split * ((i, j, k) + band_key_shift()) + (a, b, c) of the result; the keys
+  /// are sorted. split = 1 gives BandVoxelsWithin's set.
+  VoxelGrid BandCellsWithin(float depth, float value, int split) const;
   int band_key_shift() const { return shift_; }
   std::size_t num_band_voxels() const { return band_.num_voxels(); }
   /// Bytes held by this object (the shared mesh is not counted).
