@@ -641,7 +641,7 @@ class BoundCellTraversal {
       Eigen::Vector3d q[8];
       for (int k = 0; k < count; ++k) {
         q[k] = centre(first + static_cast<std::uint32_t>(k));
-        bound.Prefetch(q[k]);
+        bound.Prefetch(q[k], static_cast<double>(sph[first + static_cast<std::uint32_t>(k)].w()) + grow);
       }
       for (int k = count; k-- > 0;) {
         const std::uint32_t child = first + static_cast<std::uint32_t>(k);

@@ -100,15 +100,16 @@ class DistanceBound {
   bool VoxelOccupied(int x, int y, int z) const;
   /// The finest level is the voxels themselves (level 0), so VoxelOccupied works.
   bool has_voxel_occupancy() const { return !levels_.empty() && finest_level_ == 0; }
-  /// Asks the memory system for the finest-level byte ExcludesAt(q0) reads
+  /// Asks the memory system for the byte ExcludesAt(q0, radius) reads
   /// first (a descent calls it for all children before testing them, so that
   /// their cache misses overlap). No effect on any answer.
-  void Prefetch(const Eigen::Vector3d& q0) const {
+  void Prefetch(const Eigen::Vector3d& q0, double radius) const {
     if (levels_.empty() || !(std::abs(q0.x()) < (1 << 22) && std::abs(q0.y()) < (1 << 22) && std::abs(q0.z()) < (1 << 22))) {
       return;
     }
-    const Level& level = levels_[0];
-    const int cx = detail::FloorInt(q0.x()), cy = detail::FloorInt(q0.y()), cz = detail::FloorInt(q0.z());
+    const Level& level = levels_[FirstLevel(radius)];
+    const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
+    const int cx = detail::FloorInt(qx), cy = detail::FloorInt(qy), cz = detail::FloorInt(qz);
     const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits,
                                                              cz >> detail::kBoundBrickBits));
     constexpr int m = detail::kBoundBrickEdge - 1;
@@ -126,6 +127,15 @@ class DistanceBound {
  private:
   template <bool kEstimate>
   Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
+  /// The first level a probe of this radius reads: a level whose cap is at
+  /// most the radius cannot exclude the ball (its margin m - radius is never
+  /// positive), so the probe starts at the first level that can (the last
+  /// level when none can). Every level is a valid lower bound on its own.
+  std::size_t FirstLevel(double radius) const {
+    std::size_t l = 0;
+    while (l + 1 < levels_.size() && levels_[l].cap_mm <= radius) ++l;
+    return l;
+  }
   using Brick = std::array<std::uint8_t, 512>;  ///< cell x + 8 y + 64 z
   struct Level {
     double s = 0.0;  ///< cell edge, mm
@@ -173,7 +183,8 @@ inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, dou
   constexpr int m = detail::kBoundBrickEdge - 1;
   // Finest level first, as LowerBound: the estimate (the largest bound over
   // the levels read) then orders a descent as well as LowerBound does.
-  for (std::size_t l = 0; l < levels_.size(); ++l) {
+  const std::size_t first = FirstLevel(radius);
+  for (std::size_t l = first; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
     const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
     if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return probe;  // also NaN
@@ -193,7 +204,7 @@ inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, dou
     }
     if constexpr (kEstimate) {
       const double gap = margin - level.s * std::sqrt(o2);
-      probe.gap_estimate = l == 0 ? gap : std::max(probe.gap_estimate, gap);
+      probe.gap_estimate = l == first ? gap : std::max(probe.gap_estimate, gap);
     }
     if (value < level.cap) return probe;  // unsaturated: a coarser level is no tighter
   }
