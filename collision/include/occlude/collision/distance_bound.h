@@ -129,7 +129,7 @@ class DistanceBound {
   Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
   /// The first level a probe of this radius reads: a level whose cap is at
   /// most the radius cannot exclude the ball (its margin m - radius is never
-  /// positive), so the probe starts at the first level that can (the last
+  /// positive), so ExcludesAt starts at the first level that can (the last
   /// level when none can). Every level is a valid lower bound on its own.
   std::size_t FirstLevel(double radius) const {
     std::size_t l = 0;
@@ -183,7 +183,10 @@ inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, dou
   constexpr int m = detail::kBoundBrickEdge - 1;
   // Finest level first, as LowerBound: the estimate (the largest bound over
   // the levels read) then orders a descent as well as LowerBound does.
-  const std::size_t first = FirstLevel(radius);
+  // With the estimate, from the finest level all the same: a fine level's
+  // gap orders a nearest-first descent much better (a-bite-3shape boolean at
+  // +0.7 mm: 106 node tests this way, 676 from the first useful level).
+  const std::size_t first = kEstimate ? 0 : FirstLevel(radius);
   for (std::size_t l = first; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
     const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
