@@ -147,11 +147,11 @@ MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L, const io::T
   field.peak_bytes = field.resident_bytes;
   total += field;
   // The field bound: a distance bound over a set a few voxels thicker than the
-  // lower's surface voxels, in cells of voxel / kFieldBoundSplit: about the
+  // lower's surface voxels, in cells of voxel / FieldBoundSplit: about the
   // size of the lower tree's own bound at that cell size (a-bite-3shape at
   // 0.2 mm: the oracle grew by 21 MB when the cells were halved).
   if (options.field_bound_mm >= 0.0) {
-    const double s = options.voxel_size_mm / JawOracle::kFieldBoundSplit;
+    const double s = options.voxel_size_mm / JawOracle::FieldBoundSplit(options.voxel_size_mm);
     total += Make(std::max(kBoundMinBytes, kBoundBytesPerArea * lower_L.SurfaceArea() / (s * s)), 0.0);
   }
   const double spacing = options.sample_spacing_mm > 0 ? options.sample_spacing_mm : 0.3;

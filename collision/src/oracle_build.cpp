@@ -197,14 +197,14 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     // Widened by a margin far above float rounding in the trilinear values (a
     // rounded value may fall an ulp outside its voxel's corner range).
     constexpr double kMarginMm = 1e-5;
-    // Half-voxel cells: the set's cubes reach at most the band plus half a cell
-    // diagonal (0.17 mm at 0.2 mm voxels) beyond the contact band, not a whole
-    // voxel's (0.35 mm), so fewer upper cells come within reach; levels 0, 1, 2
-    // and 4 of the bound keep its coarsest cap as far out as before.
+    // Cells of voxel / split (see FieldBoundSplit); with half-voxel cells,
+    // levels 0, 1, 2 and 4 of the bound keep its coarsest cap as far out (in
+    // mm) as the default levels 0, 1 and 3 of whole voxels.
+    const int split = FieldBoundSplit(options.voxel_size_mm);
     field_bound_ = DistanceBound::Build(sdf_.BandCellsWithin(static_cast<float>(options.field_bound_depth_mm + kMarginMm),
-                                                             static_cast<float>(options.field_bound_mm + kMarginMm),
-                                                             kFieldBoundSplit),
-                                        DistanceBound::kMaxVoxels, {0, 1, 2, 4});
+                                                             static_cast<float>(options.field_bound_mm + kMarginMm), split),
+                                        DistanceBound::kMaxVoxels,
+                                        split == 2 ? std::vector<int>{0, 1, 2, 4} : std::vector<int>{0, 1, 3});
   }
   arch_ = options.arch ? *options.arch : EstimateArchFrame(*lower_L, *upper_U);
 

@@ -74,7 +74,7 @@ struct OracleOptions {
   /// the residual band with residuals) is at most field_bound_mm and whose
   /// penetration search is at most field_bound_depth_mm prune the upper tree
   /// against the lower's field bound: the surface voxels and the cells of the
-  /// band voxels (each voxel split JawOracle::kFieldBoundSplit ways per axis)
+  /// band voxels (each split JawOracle::FieldBoundSplit(voxel) ways per axis)
   /// where the field takes values in [-depth, field_bound_mm]. Every sample
   /// whose value lies in that range is in one of them, so the broad phase
   /// needs no reach and reports no cell that lies wholly beyond the contact
@@ -162,12 +162,14 @@ struct OracleResult {
 /// and the upper's samples, built once; Query() is const and thread-safe.
 class JawOracle {
  public:
-  /// The field bound's cells are the voxels split this many ways per axis:
-  /// its cubes then reach at most half a voxel diagonal beyond the band (0.17
-  /// mm at 0.2 mm voxels) instead of a whole one, so fewer upper cells come
-  /// within reach (a-bite-3shape at 0.2 mm, +0.2 mm apart: 1305 -> 635 cells
-  /// and 153 -> 123 us; build +0.65 s, +21 MB).
-  static constexpr int kFieldBoundSplit = 2;
+  /// The field bound's cells: the voxels split this many ways per axis, 2
+  /// unless that would make them finer than 0.1 mm (then 1). Half-voxel cubes
+  /// reach at most half a voxel diagonal beyond the band (0.17 mm at 0.2 mm
+  /// voxels) instead of a whole one, so fewer upper cells come within reach
+  /// (a-bite-3shape at 0.2 mm, +0.2 mm apart: 1305 -> 635 cells and 153 ->
+  /// 123 us; build +0.65 s, +21 MB). At 0.1 mm voxels the whole voxel is
+  /// already that fine, and halving it cost 8 s of build and 93 MB.
+  static int FieldBoundSplit(double voxel_size_mm) { return voxel_size_mm >= 0.2 - 1e-9 ? 2 : 1; }
 
   JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
             std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options = {});
