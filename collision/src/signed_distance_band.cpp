@@ -374,7 +374,14 @@ VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) co
   for (const std::uint64_t key : voxels.surface_keys) {
     const Eigen::Vector3i g = MortonDecode(key);  // index in `voxels` (shifted)
     const Eigen::Vector3i v = g - Eigen::Vector3i::Constant(shift_);
-    const bool surface = (v.array() >= 0).all() && surface_.Rank(MortonEncode(v)) != detail::KeyIndexHash::kNotFound;
+    if ((v.array() >= 0).all() && surface_.Rank(MortonEncode(v)) != detail::KeyIndexHash::kNotFound) {
+      // Surface voxels whole, as BandVoxelsWithin keeps them (so that no cell
+      // found still means that no upper voxel comes near the lower surface).
+      for (int o = 0; o < split * split * split; ++o) {
+        out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+      }
+      continue;
+    }
     const detail::BrickSet::Brick* brick = band_.FindAt(static_cast<std::uint32_t>(g.x()) >> 2,
                                                         static_cast<std::uint32_t>(g.y()) >> 2,
                                                         static_cast<std::uint32_t>(g.z()) >> 2);
@@ -397,17 +404,15 @@ VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) co
     for (int z = 0; z < split; ++z) {
       for (int y = 0; y < split; ++y) {
         for (int x = 0; x < split; ++x) {
-          bool keep = surface;
-          if (!keep) {
-            float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
-            for (int o = 0; o < 8; ++o) {
-              const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
-              lowest = std::min(lowest, f);
-              highest = std::max(highest, f);
-            }
-            keep = lowest <= value && highest >= -depth;
+          float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
+          for (int o = 0; o < 8; ++o) {
+            const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
+            lowest = std::min(lowest, f);
+            highest = std::max(highest, f);
           }
-          if (keep) out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+          if (lowest <= value && highest >= -depth) {
+            out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+          }
         }
       }
     }
