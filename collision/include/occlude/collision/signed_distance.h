@@ -241,7 +241,8 @@ class NarrowBandSdf {
   /// corners, whose values are interpolated from the voxel's) and every cell
   /// of the surface voxels. Cell (a, b, c) of voxel (i, j, k) is cell
   /// split * ((i, j, k) + band_key_shift()) + (a, b, c) of the result; the keys
-  /// are sorted. split = 1 gives BandVoxelsWithin's set.
+  /// are sorted. split = 1 gives BandVoxelsWithin's set. Throws
+  /// std::invalid_argument unless 1 <= split <= 8.
   VoxelGrid BandCellsWithin(float depth, float value, int split) const;
   int band_key_shift() const { return shift_; }
   std::size_t num_band_voxels() const { return band_.num_voxels(); }
