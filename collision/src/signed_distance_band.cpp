@@ -331,11 +331,16 @@ bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
   return true;
 }
 
-VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
+VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const { return BandCellsWithin(depth, value, 1); }
+
+VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) const {
+  if (split < 1 || split > 8) throw std::invalid_argument("BandCellsWithin: split must be in 1..8");
   VoxelGrid out;
-  out.voxel_size_mm = s_;
+  out.voxel_size_mm = s_ / split;
   out.origin_F = origin_ - static_cast<double>(shift_) * s_ * Eigen::Vector3d::Ones();
-  out.dims = dims_ + Eigen::Vector3i::Constant(2 * shift_);
+  out.dims = split * (dims_ + Eigen::Vector3i::Constant(2 * shift_));
+  const int n = split + 1;
+  std::vector<float> at(static_cast<std::size_t>(n * n * n));  // a voxel's field on its cells' corners
   for (std::size_t i = 0; i < band_.bricks().size(); ++i) {
     const detail::BrickSet::Brick& brick = band_.bricks()[i];
     const Eigen::Vector3i base = 4 * MortonDecode(brick.key);
@@ -344,74 +349,50 @@ VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
       // The bit is the voxel's 2x2x2-interleaved position in the brick (as Locate).
       const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1, ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
                               ((bit >> 2) & 1) | ((bit >> 5) & 1) << 1);
+      const Eigen::Vector3i g = base + l;  // the voxel's index in `out`'s voxels (shifted)
       const float* v = corner_bricks_[i].value + l.x() + 5 * l.y() + 25 * l.z();
-      float lowest = v[0], highest = v[0];
-      for (const int step : kCornerStep) {
-        lowest = std::min(lowest, v[step]);
-        highest = std::max(highest, v[step]);
+      float c[8];
+      for (int o = 0; o < 8; ++o) c[o] = v[kCornerStep[o]];
+      // A trilinear value lies between its voxel's smallest and largest corner.
+      const bool in_range = *std::min_element(c, c + 8) <= value && *std::max_element(c, c + 8) >= -depth;
+      // Surface voxels are kept whole (so that no cell found still means that
+      // no upper voxel comes near the lower surface).
+      const Eigen::Vector3i v_F = g - Eigen::Vector3i::Constant(shift_);
+      const bool surface = (split > 1 || !in_range) && (v_F.array() >= 0).all() &&
+                           surface_.Rank(MortonEncode(v_F)) != detail::KeyIndexHash::kNotFound;
+      if (!in_range && !surface) continue;
+      if (surface || split == 1) {
+        for (int o = 0; o < split * split * split; ++o) {
+          out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+        }
+        continue;
       }
-      bool keep = lowest <= value && highest >= -depth;
-      if (!keep) {
-        const Eigen::Vector3i g = base + l - Eigen::Vector3i::Constant(shift_);
-        keep = (g.array() >= 0).all() && surface_.Rank(MortonEncode(g)) != detail::KeyIndexHash::kNotFound;
-      }
-      if (keep) out.surface_keys.push_back((brick.key << 6) | static_cast<std::uint64_t>(bit));
-    }
-  }
-  return out;
-}
-
-VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) const {
-  if (split < 1 || split > 8) throw std::invalid_argument("BandCellsWithin: split must be in 1..8");
-  const VoxelGrid voxels = BandVoxelsWithin(depth, value);
-  if (split == 1) return voxels;
-  VoxelGrid out;
-  out.voxel_size_mm = s_ / split;
-  out.origin_F = voxels.origin_F;
-  out.dims = split * voxels.dims;
-  const int n = split + 1;
-  std::vector<float> at(static_cast<std::size_t>(n * n * n));  // the voxel's field on the cells' corners
-  for (const std::uint64_t key : voxels.surface_keys) {
-    const Eigen::Vector3i g = MortonDecode(key);  // index in `voxels` (shifted)
-    const Eigen::Vector3i v = g - Eigen::Vector3i::Constant(shift_);
-    if ((v.array() >= 0).all() && surface_.Rank(MortonEncode(v)) != detail::KeyIndexHash::kNotFound) {
-      // Surface voxels whole, as BandVoxelsWithin keeps them (so that no cell
-      // found still means that no upper voxel comes near the lower surface).
-      for (int o = 0; o < split * split * split; ++o) {
-        out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
-      }
-      continue;
-    }
-    const detail::BrickSet::Brick* brick = band_.FindAt(static_cast<std::uint32_t>(g.x()) >> 2,
-                                                        static_cast<std::uint32_t>(g.y()) >> 2,
-                                                        static_cast<std::uint32_t>(g.z()) >> 2);
-    if (brick == nullptr) continue;  // not a band voxel (cannot happen: the keys come from the band)
-    const float* c = corner_bricks_[static_cast<std::size_t>(brick - band_.bricks().data())].value + (g.x() & 3) +
-                     5 * (g.y() & 3) + 25 * (g.z() & 3);
-    for (int z = 0; z < n; ++z) {
-      for (int y = 0; y < n; ++y) {
-        for (int x = 0; x < n; ++x) {
-          const float fx = static_cast<float>(x) / static_cast<float>(split);
-          const float fy = static_cast<float>(y) / static_cast<float>(split);
-          const float fz = static_cast<float>(z) / static_cast<float>(split);
-          const float a0 = c[0] + fx * (c[1] - c[0]), a1 = c[5] + fx * (c[6] - c[5]);
-          const float a2 = c[25] + fx * (c[26] - c[25]), a3 = c[30] + fx * (c[31] - c[30]);
-          const float b0 = a0 + fy * (a1 - a0), b1 = a2 + fy * (a3 - a2);
-          at[static_cast<std::size_t>(x + n * (y + n * z))] = b0 + fz * (b1 - b0);
+      // The field on the cells' corners, then the cells whose corner range meets [-depth, value].
+      for (int z = 0; z < n; ++z) {
+        for (int y = 0; y < n; ++y) {
+          for (int x = 0; x < n; ++x) {
+            const float fx = static_cast<float>(x) / static_cast<float>(split);
+            const float fy = static_cast<float>(y) / static_cast<float>(split);
+            const float fz = static_cast<float>(z) / static_cast<float>(split);
+            const float a0 = c[0] + fx * (c[1] - c[0]), a1 = c[2] + fx * (c[3] - c[2]);
+            const float a2 = c[4] + fx * (c[5] - c[4]), a3 = c[6] + fx * (c[7] - c[6]);
+            const float b0 = a0 + fy * (a1 - a0), b1 = a2 + fy * (a3 - a2);
+            at[static_cast<std::size_t>(x + n * (y + n * z))] = b0 + fz * (b1 - b0);
+          }
         }
       }
-    }
-    for (int z = 0; z < split; ++z) {
-      for (int y = 0; y < split; ++y) {
-        for (int x = 0; x < split; ++x) {
-          float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
-          for (int o = 0; o < 8; ++o) {
-            const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
-            lowest = std::min(lowest, f);
-            highest = std::max(highest, f);
-          }
-          if (lowest <= value && highest >= -depth) {
-            out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+      for (int z = 0; z < split; ++z) {
+        for (int y = 0; y < split; ++y) {
+          for (int x = 0; x < split; ++x) {
+            float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
+            for (int o = 0; o < 8; ++o) {
+              const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
+              lowest = std::min(lowest, f);
+              highest = std::max(highest, f);
+            }
+            if (lowest <= value && highest >= -depth) {
+              out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+            }
           }
         }
       }
