@@ -68,6 +68,7 @@ void RunValidateCommand(const ValidateArgs& args) {
   WriteFileAtomic(out / "validate.csv", ValidateCsv(result));
   WriteFileAtomic(out / "validate-summary.csv", ValidateSummaryCsv(result));
   WriteFileAtomic(out / "validate-summary.txt", summary);
+  WriteFileAtomic(out / "reference-path.csv", ReferencePathCsv(result));
   for (const auto& [file, png] : charts) WriteFileAtomic(out / file, png);
   std::cout << summary;
   std::cerr << "validate: wrote " << (out / "validate.csv").string() << ", the summaries and the charts\n";

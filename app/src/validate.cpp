@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <ostream>
 #include <random>
@@ -30,6 +31,47 @@ Eigen::Vector3d InBall(std::mt19937& rng, double radius) {
   return radius * std::cbrt(u(rng)) * d.normalized();
 }
 
+
+// The medoid of `runs` (largest displacement of the reference points as the distance).
+std::size_t Medoid(const std::vector<const ValidateRun*>& runs, const std::vector<Eigen::Vector3d>& points_U) {
+  std::size_t medoid = 0;
+  double best_sum = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    double sum = 0.0;
+    for (const ValidateRun* other : runs) sum += planner::ComparePoses(runs[i]->X_LU, other->X_LU, points_U).translation_mm;
+    if (sum < best_sum) best_sum = sum, medoid = i;
+  }
+  return medoid;
+}
+
+ReferenceCheck CheckReference(const std::vector<ValidateRun>& runs, const planner::OracleStage& stage,
+                              const Eigen::Isometry3d& X_ref, const Eigen::Vector3d& pivot_L,
+                              const std::vector<Eigen::Vector3d>& points_U, const planner::PlanRequest& request,
+                              const ValidateOptions& options) {
+  ReferenceCheck check;
+  if (runs.empty()) return check;
+  std::vector<const ValidateRun*> all;
+  for (const ValidateRun& r : runs) all.push_back(&r);
+  check.X_LU_consensus = all[Medoid(all, points_U)]->X_LU;
+  check.consensus_error = planner::ComparePoses(check.X_LU_consensus, X_ref, points_U);
+  check.path = planner::EvaluatePath(stage, X_ref, check.X_LU_consensus, pivot_L, points_U, request,
+                                    std::max(1, options.path_steps));
+  check.consensus = check.path.back().evaluation;
+  const planner::PoseEvaluation& reference = check.path.front().evaluation;
+  for (std::size_t k = 1; k < check.path.size(); ++k) {
+    const planner::PoseEvaluation& e = check.path[k].evaluation;
+    if (!planner::Dominates(e, reference)) continue;
+    const planner::PoseError& d = check.path[k].from_start;
+    const bool beyond_bar = d.translation_mm > options.success_mm || d.rotation_deg > options.success_deg;
+    if (check.nearest_dominating < 0) check.nearest_dominating = static_cast<int>(k);
+    if (beyond_bar && check.nearest_dominating_beyond_bar < 0) check.nearest_dominating_beyond_bar = static_cast<int>(k);
+    if (check.most_contact_dominating < 0 ||
+        e.contact_area_mm2 > check.path[static_cast<std::size_t>(check.most_contact_dominating)].evaluation.contact_area_mm2) {
+      check.most_contact_dominating = static_cast<int>(k);
+    }
+  }
+  return check;
+}
 
 struct Job {
   SolverKind solver;
@@ -162,13 +204,7 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
         }
       }
       if (group.empty()) continue;
-      std::size_t medoid = 0;
-      double best_sum = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < group.size(); ++i) {
-        double sum = 0.0;
-        for (const ValidateRun* other : group) sum += planner::ComparePoses(group[i]->X_LU, other->X_LU, points_U).translation_mm;
-        if (sum < best_sum) best_sum = sum, medoid = i;
-      }
+      const std::size_t medoid = Medoid(std::vector<const ValidateRun*>(group.begin(), group.end()), points_U);
       ValidateSummary row;
       row.solver = s;
       row.magnitude = options.magnitudes[m];
@@ -201,6 +237,7 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       result.summary.push_back(row);
     }
   }
+  result.reference_check = CheckReference(result.runs, last, X_ref, pivot_L, points_U, base, options);
   return result;
 }
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace occlude::planner {
 
@@ -176,6 +178,33 @@ PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d&
   const Eigen::AngleAxisd aa(Eigen::Matrix3d(X_LU_a.linear() * X_LU_b.linear().transpose()));
   e.rotation_deg = std::abs(aa.angle()) * 180.0 / M_PI;
   return e;
+}
+
+std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isometry3d& X_LU_from,
+                                    const Eigen::Isometry3d& X_LU_to, const Eigen::Vector3d& p_LPivot,
+                                    const std::vector<Eigen::Vector3d>& points_U, const PlanRequest& request,
+                                    int steps) {
+  if (steps < 1) throw std::invalid_argument("EvaluatePath: steps must be at least 1 (got " + std::to_string(steps) + ")");
+  const PoseParameters to = DecomposePose(X_LU_to, p_LPivot, X_LU_from);
+  std::vector<PathPoint> path;
+  path.reserve(static_cast<std::size_t>(steps) + 1);
+  for (int k = 0; k <= steps; ++k) {
+    PathPoint p;
+    p.s = static_cast<double>(k) / steps;
+    PoseParameters at;
+    at.translation_mm = p.s * to.translation_mm;
+    at.rotation_deg = p.s * to.rotation_deg;
+    p.X_LU = k == steps ? X_LU_to : ComposePose(at, p_LPivot, X_LU_from);
+    p.from_start = ComparePoses(p.X_LU, X_LU_from, points_U);
+    p.evaluation = EvaluatePose(stage, p.X_LU, request);
+    path.push_back(std::move(p));
+  }
+  return path;
+}
+
+bool Dominates(const PoseEvaluation& a, const PoseEvaluation& b) {
+  return a.contact_area_mm2 > b.contact_area_mm2 && a.constrained_penetration_mm <= b.constrained_penetration_mm &&
+         a.deep_samples <= b.deep_samples;
 }
 
 }  // namespace occlude::planner

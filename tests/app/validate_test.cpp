@@ -102,11 +102,36 @@ void CheckCsvAndCharts(const ValidateResult& r, const ValidateOptions& options) 
   EXPECT_NE(text.find("closing"), std::string::npos);
   EXPECT_NE(text.find("reference pose as given"), std::string::npos);
   const auto charts = ValidateCharts(r, options, "test");
-  ASSERT_EQ(charts.size(), 3u);
+  ASSERT_EQ(charts.size(), 4u);
+  EXPECT_EQ(charts.back().first, "reference-path.png");
   for (const auto& [file, png] : charts) {
     ASSERT_GT(png.size(), 8u) << file;
     EXPECT_EQ(png.substr(1, 3), "PNG") << file;
   }
+}
+
+// The reference check on a reference the runs agree with: its path starts at the reference
+// (same evaluation as `reference`) and ends at a consensus within the success bar.
+void CheckReferencePath(const ValidateResult& r, const ValidateOptions& options) {
+  const ReferenceCheck& c = r.reference_check;
+  ASSERT_EQ(c.path.size(), static_cast<std::size_t>(options.path_steps) + 1);
+  EXPECT_DOUBLE_EQ(c.path.front().s, 0.0);
+  EXPECT_DOUBLE_EQ(c.path.back().s, 1.0);
+  EXPECT_NEAR(c.path.front().from_start.translation_mm, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(c.path.front().evaluation.contact_area_mm2, r.reference.contact_area_mm2);
+  EXPECT_LE(c.consensus_error.translation_mm, options.success_mm);
+  EXPECT_TRUE(c.path.back().X_LU.isApprox(c.X_LU_consensus, 1e-12));
+  for (std::size_t k = 1; k < c.path.size(); ++k) {  // monotone along a straight path
+    EXPECT_GE(c.path[k].from_start.translation_mm, c.path[k - 1].from_start.translation_mm - 1e-9);
+  }
+  std::istringstream csv(ReferencePathCsv(r));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("s,from_reference_mm,from_reference_deg,contact_area_mm2", 0), 0u) << header;
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, options.path_steps + 1);
+  EXPECT_NE(ValidateSummaryText(r, options, "m").find("reference check"), std::string::npos);
 }
 
 // One test for both checks: each ctest test is a process of its own, and the run is the
@@ -116,6 +141,53 @@ TEST(ValidateTest, OneRunPerSolverMagnitudeAndStartWithTheirErrorsCsvAndCharts) 
   const ValidateResult& r = SmallRun(&options);
   CheckRunsAndSummaries(r, options);
   CheckCsvAndCharts(r, options);
+  CheckReferencePath(r, options);
+}
+
+TEST(PoseDominanceTest, MoreContactAndNoDeeperPenetrationDominates) {
+  planner::PoseEvaluation a, b;
+  a.contact_area_mm2 = 10.0;
+  b.contact_area_mm2 = 8.0;
+  a.constrained_penetration_mm = b.constrained_penetration_mm = 0.03;
+  EXPECT_TRUE(planner::Dominates(a, b));
+  EXPECT_FALSE(planner::Dominates(b, a));
+  EXPECT_FALSE(planner::Dominates(a, a));  // strictly more contact
+  a.constrained_penetration_mm = 0.031;
+  EXPECT_FALSE(planner::Dominates(a, b));
+  a.constrained_penetration_mm = 0.0;
+  a.deep_samples = 1;
+  EXPECT_FALSE(planner::Dominates(a, b));
+}
+
+// A "registered" bite that is not seated (the synthetic pair opened 0.5 mm along its occlusal
+// axis, as the open-bite scan is; its jaws are then >= 0.38 mm apart): the closing runs find
+// the designed bite, and the check must find poses on the way, beyond the 0.3 mm success bar,
+// that dominate the opened reference (contact, no penetration).
+TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
+  JawPairCase jaws = SyntheticJawPairCase(io::kMinSyntheticTriangles, 1);
+  const Eigen::Isometry3d X_bite = jaws.X_LU_ref;
+  jaws.X_LU_ref.pretranslate(Eigen::Vector3d(0.0, 0.5, 0.0));  // +y: occlusal axis of the synthetic pair
+  ValidateOptions o;
+  o.solvers = {planner::SolverKind::kCeres};
+  o.starts = 1;
+  o.magnitudes = {{0.0, 0.0}};
+  o.voxels_mm = {0.8, 0.5};
+  o.threads = 1;
+  const ValidateResult r = RunValidation(jaws, o);
+  const ReferenceCheck& c = r.reference_check;
+  EXPECT_EQ(r.reference.contact_area_mm2, 0.0);
+  ASSERT_GE(c.nearest_dominating, 1);
+  ASSERT_GE(c.nearest_dominating_beyond_bar, c.nearest_dominating);
+  EXPECT_GT(c.path[static_cast<std::size_t>(c.nearest_dominating_beyond_bar)].from_start.translation_mm, o.success_mm);
+  ASSERT_GE(c.most_contact_dominating, c.nearest_dominating);
+  const planner::PoseEvaluation& best = c.path[static_cast<std::size_t>(c.most_contact_dominating)].evaluation;
+  EXPECT_GT(best.contact_area_mm2, r.reference.contact_area_mm2 + 1.0);
+  EXPECT_LE(best.constrained_penetration_mm, r.reference.constrained_penetration_mm);
+  // The consensus is the designed bite again, 0.5 mm from the opened reference.
+  EXPECT_NEAR(c.consensus_error.translation_mm, 0.5, 0.15);
+  EXPECT_LT((c.X_LU_consensus.translation() - X_bite.translation()).norm(), 0.15);
+  const std::string text = ValidateSummaryText(r, o, "m");
+  EXPECT_NE(text.find("DOMINATED"), std::string::npos) << text;
 }
 
 TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
@@ -124,7 +196,7 @@ TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
                                             "--voxels 0.5 --out " + (tmp / "v").string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   for (const char* f : {"validate.csv", "validate-summary.csv", "validate-summary.txt", "stability.png", "error.png",
-                        "time-vs-error.png"}) {
+                        "time-vs-error.png", "reference-path.csv", "reference-path.png"}) {
     EXPECT_TRUE(std::filesystem::exists(tmp / "v" / f)) << f;
   }
   const std::vector<std::pair<std::string, std::string>> bad = {

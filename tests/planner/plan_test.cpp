@@ -226,3 +226,34 @@ TEST(PlanTest, RequestErrorsNameTheField) {
 
 }  // namespace
 }  // namespace occlude::planner
+
+namespace occlude::planner {
+namespace {
+
+// The straight path between two poses: its ends are the two poses, each point evaluated as
+// EvaluatePose would, the displacement grows linearly along a pure translation; the bite of
+// the synthetic pair has contact, the pose opened 0.5 mm none (its jaws are >= 0.38 mm apart).
+TEST(EvaluatePathTest, EndsAtBothPosesAndEvaluatesEachPoint) {
+  const auto& c = Synthetic();
+  const OracleStage& stage = c.schedule.stages.back();
+  const PlanRequest request;
+  Eigen::Isometry3d X_open = c.pair.X_LU;
+  X_open.pretranslate(0.5 * c.pair.occlusal_axis_L);
+  const std::vector<PathPoint> path = EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 5);
+  ASSERT_EQ(path.size(), 6u);
+  EXPECT_TRUE(path.front().X_LU.isApprox(c.pair.X_LU, 1e-12));
+  EXPECT_TRUE(path.back().X_LU.isApprox(X_open, 1e-12));
+  for (const PathPoint& p : path) {
+    EXPECT_NEAR(p.from_start.translation_mm, 0.5 * p.s, 1e-9) << p.s;
+    EXPECT_NEAR(p.from_start.rotation_deg, 0.0, 1e-6) << p.s;
+    const PoseEvaluation direct = EvaluatePose(stage, p.X_LU, request);
+    EXPECT_DOUBLE_EQ(p.evaluation.contact_area_mm2, direct.contact_area_mm2) << p.s;
+    EXPECT_DOUBLE_EQ(p.evaluation.constrained_penetration_mm, direct.constrained_penetration_mm) << p.s;
+  }
+  EXPECT_GT(path.front().evaluation.contact_area_mm2, 1.0);
+  EXPECT_EQ(path.back().evaluation.contact_area_mm2, 0.0);
+  EXPECT_THROW(EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace occlude::planner

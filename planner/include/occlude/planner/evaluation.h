@@ -114,4 +114,24 @@ struct PoseError {
 PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d& X_LU_b,
                        const std::vector<Eigen::Vector3d>& points_U);
 
+/// A pose on the straight path between two poses, evaluated.
+struct PathPoint {
+  double s = 0.0;                 ///< 0 at the path's start, 1 at its end
+  Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
+  PoseError from_start;           ///< displacement from the start pose (ComparePoses' points)
+  PoseEvaluation evaluation;
+};
+/// `steps + 1` poses at s = k / steps between X_LU_from (s = 0) and X_LU_to (s = 1): the pivot
+/// parameters of X_LU_to relative to X_LU_from (about p_LPivot) scaled by s, each evaluated
+/// on `stage` under the request. Throws std::invalid_argument when steps < 1.
+std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isometry3d& X_LU_from,
+                                    const Eigen::Isometry3d& X_LU_to, const Eigen::Vector3d& p_LPivot,
+                                    const std::vector<Eigen::Vector3d>& points_U, const PlanRequest& request,
+                                    int steps);
+/// Does `a` Pareto-dominate `b` for "maximal contact, no interpenetration": strictly more
+/// contact area, no deeper outlier-robust penetration and no more deep samples. A pose that
+/// another dominates is the optimum of no objective that rewards contact and penalizes
+/// penetration.
+bool Dominates(const PoseEvaluation& a, const PoseEvaluation& b);
+
 }  // namespace occlude::planner
