@@ -95,7 +95,7 @@ void ReferenceCheckText(const ValidateResult& result, const ValidateOptions& opt
          "and no deeper penetration); that is no proof that the reference is the optimum.\n";
   } else if (c.nearest_dominating_beyond_bar < 0) {
     s << "Poses on the path dominate the reference (more contact, no deeper penetration) only within the success\n"
-         "bar (" << bar << "), where a solver that reaches them still succeeds. Most contact: "
+         "bar (" << bar << "), where a solver that reaches them still succeeds. Most contact at\n"
       << describe(c.most_contact_dominating) << ".\n";
   } else {
     s << "The reference is DOMINATED beyond the success bar (" << bar << "): at\n"
@@ -230,13 +230,14 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   if (!check.path.empty()) {
     LineChart path;
     path.title = "Reference check: from the reference to the consensus of the runs (" + result.case_name + ")";
-    path.subtitle = subtitle + " | labels: outlier-robust penetration, um; limit " +
-                    Fixed(1000.0 * options.max_penetration_mm, 0) + " um";
+    path.subtitle = subtitle + " | labels: outlier-robust penetration, um (limit " +
+                    Fixed(1000.0 * options.max_penetration_mm, 0) +
+                    "); dominates: more contact, no deeper penetration than the reference";
     path.x_label = "displacement from the reference pose, mm (largest of the reference points)";
     path.y_label = "contact area within the band, mm^2";
     path.y_include = {0.0};
     ChartSeries contact{"contact along the path", {}, {}, 0, false};
-    ChartSeries dominating{"dominates the reference (more contact, no deeper penetration)", {}, {}, 1, false};
+    ChartSeries dominating{"dominates the reference", {}, {}, 1, false};
     dominating.markers_only = true;
     for (const planner::PathPoint& p : check.path) {
       contact.x.push_back(p.from_start.translation_mm);
