@@ -98,8 +98,8 @@ void ReferenceCheckText(const ValidateResult& result, const ValidateOptions& opt
          "bar (" << bar << "), where a solver that reaches them still succeeds. Most contact at\n"
       << describe(c.most_contact_dominating) << ".\n";
   } else {
-    s << "The reference is DOMINATED beyond the success bar (" << bar << "): at\n"
-      << describe(c.nearest_dominating_beyond_bar) << " (more contact, no deeper penetration);\nmost contact at "
+    s << "The reference is DOMINATED (more contact, no deeper penetration) beyond the success bar (" << bar
+      << "):\nat " << describe(c.nearest_dominating_beyond_bar) << ";\nmost contact at "
       << describe(c.most_contact_dominating) << ".\n"
       << "Every objective that rewards contact and penalizes penetration prefers that pose, beyond the bar, to\n"
          "the reference: errors against the reference measure how far it is from such a seat, not how well the\n"
