@@ -80,7 +80,8 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
               << p.evaluation.max_penetration_mm << " mm (constrained " << p.evaluation.constrained_penetration_mm
               << ", " << p.evaluation.outliers.size() << " outlier samples)  " << planner::ToString(p.status) << "\n";
   }
-  if (best.status != planner::SolveStatus::kConverged && best.status != planner::SolveStatus::kMaxEvaluations) {
+  if (best.status != planner::SolveStatus::kConverged && best.status != planner::SolveStatus::kMaxEvaluations &&
+      best.status != planner::SolveStatus::kMaxIterations) {
     std::cout << "  note: the best proposal's status is " << planner::ToString(best.status) << ": " << best.message
               << "; it is the best feasible pose found\n";
   }

@@ -8,6 +8,7 @@
 #include <ceres/ceres.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "least_squares_internal.h"
 
@@ -117,14 +118,20 @@ class ClosureCost final : public ceres::SizedCostFunction<1, 6> {
 
 }  // namespace
 
+// The rounds of solve-and-settle stop when a round moves no parameter by more than this
+// (mm for translations, degrees for rotations).
+constexpr double kOuterTolerance = 0.005;
+
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations) {
   const PlanRequest& req = *problem.request;
   const ResidualSettings settings = SeatSettings(stage, req);
   LocalResult result;
   result.x = x0;
-  result.status = SolveStatus::kMaxEvaluations;
+  result.status = SolveStatus::kMaxIterations;
   Vector6d x = x0;
+  double change = 0.0;
+  int rounds = 0;
   bool locked_any = false;
   std::vector<int> locked;
   for (int i = 0; i < kNumDof; ++i) {
@@ -137,14 +144,20 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     return result;
   }
   for (int outer = 0; outer < max_outer; ++outer) {
-    if (result.evaluations >= max_evaluations) break;
+    if (result.evaluations >= max_evaluations) {
+      result.status = SolveStatus::kMaxEvaluations;
+      break;
+    }
+    ++rounds;
     const Eigen::Isometry3d X_base = PoseOf(problem, x);
     const std::vector<bool> spikes = SpikeSamples(stage, samples, X_base, problem);
     const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L, settings, 4000,
                                        &spikes);
     if (model.area.empty()) {
+      result.status = SolveStatus::kFailed;  // nothing within reach to seat on
       result.message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
-      break;
+      result.x = x;
+      return result;
     }
     ceres::Problem::Options popts;
     ceres::Problem lsq(popts);
@@ -194,13 +207,19 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     int settle_evals = 0;
     const Vector6d settled = SettleOnSet(stage, samples, problem, moved, &settle_evals);
     result.evaluations += settle_evals;
-    const double change = (settled - x).cwiseAbs().maxCoeff();
+    change = (settled - x).cwiseAbs().maxCoeff();
     x = settled;
     result.message = "ceres: " + summary.BriefReport();
-    if (change < 0.005) {
+    if (change < kOuterTolerance) {
       result.status = SolveStatus::kConverged;
       break;
     }
+  }
+  if (result.status == SolveStatus::kMaxIterations || result.status == SolveStatus::kMaxEvaluations) {
+    char last[160];
+    std::snprintf(last, sizeof last, "; %d rounds of solve and settle, the last moved the pose by %.4f (mm or deg; tolerance %.3f)",
+                  rounds, change, kOuterTolerance);
+    result.message += last;
   }
   result.x = x;
   return result;

@@ -18,6 +18,7 @@ const char* ToString(SolveStatus status) {
   switch (status) {
     case SolveStatus::kConverged: return "converged";
     case SolveStatus::kMaxEvaluations: return "max-evaluations";
+    case SolveStatus::kMaxIterations: return "max-iterations";
     case SolveStatus::kInfeasible: return "infeasible";
     case SolveStatus::kFailed: return "failed";
   }

@@ -43,6 +43,13 @@ TEST_P(SolverReturnTest, ReturnsNearGroundTruthFromPerturbedStart) {
   EXPECT_TRUE(p.evaluation.feasible);
   EXPECT_GT(p.evaluation.contact_area_mm2, 1.0);
   EXPECT_TRUE(p.X_LU.matrix().allFinite());
+  // Ceres' rounds of solve and settle end converged or by their round limit, which the
+  // status and the message say (not the evaluation budget: far from spent here).
+  EXPECT_TRUE(p.status == SolveStatus::kConverged || p.status == SolveStatus::kMaxIterations) << ToString(p.status);
+  EXPECT_LT(p.evaluations, req.max_evaluations);
+  if (p.status == SolveStatus::kMaxIterations) {
+    EXPECT_NE(p.message.find("rounds of solve and settle"), std::string::npos) << p.message;
+  }
 }
 
 // NLopt: see NloptSolversStayFeasible.

@@ -23,6 +23,8 @@ namespace occlude::planner {
 enum class SolveStatus {
   kConverged,       ///< the local solver met its tolerance
   kMaxEvaluations,  ///< stopped by the evaluation budget; best feasible pose returned
+  kMaxIterations,   ///< stopped by its iteration limit before its tolerance was met (the
+                    ///< message says by how much); its last pose returned
   kInfeasible,      ///< no pose met the penetration limit; the least penetrating one returned
   kFailed,          ///< the solver failed (message says why); best feasible pose returned
 };
