@@ -56,7 +56,6 @@ ReferenceCheck CheckReference(const std::vector<ValidateRun>& runs, const planne
   check.consensus_error = planner::ComparePoses(check.X_LU_consensus, X_ref, points_U);
   check.path = planner::EvaluatePath(stage, X_ref, check.X_LU_consensus, pivot_L, points_U, request,
                                     std::max(1, options.path_steps));
-  check.consensus = check.path.back().evaluation;
   const planner::PoseEvaluation& reference = check.path.front().evaluation;
   for (std::size_t k = 1; k < check.path.size(); ++k) {
     const planner::PoseEvaluation& e = check.path[k].evaluation;

@@ -91,16 +91,15 @@ struct ValidateSummary {
 /// Is the reference pose an optimum of the objective at all? The straight path from it to
 /// the consensus of every run (the medoid of all found poses), evaluated on the last stage.
 /// A pose on it beyond the success bar that dominates the reference (more contact, no deeper
-/// penetration: planner::Dominates) shows that no objective rewarding contact and penalizing
-/// penetration has its optimum within the bar of the reference: errors against it then
-/// measure the reference, not the solvers. Dominating poses within the bar (a reference a
-/// few hundredths of a millimetre short of its seat) do not; not dominated along this path
-/// is no proof of optimality.
+/// penetration: planner::Dominates) is preferred to the reference by every objective that
+/// rewards contact and penalizes penetration: errors against the reference then measure the
+/// reference, not the solvers. Dominating poses within the bar (a reference a few hundredths
+/// of a millimetre short of its seat) do not; not dominated along this path is no proof of
+/// optimality.
 struct ReferenceCheck {
   Eigen::Isometry3d X_LU_consensus = Eigen::Isometry3d::Identity();
   planner::PoseError consensus_error;      ///< the consensus against the reference
-  planner::PoseEvaluation consensus;       ///< evaluated on the last stage
-  std::vector<planner::PathPoint> path;    ///< s = 0: the reference, s = 1: the consensus
+  std::vector<planner::PathPoint> path;    ///< s = 0: the reference, s = 1: the consensus (last stage)
   int nearest_dominating = -1;  ///< index in `path` of the first pose dominating the reference; -1: none
   int nearest_dominating_beyond_bar = -1;  ///< the first one beyond the success bar; -1: none
   int most_contact_dominating = -1;  ///< the dominating pose with the most contact; -1: none

@@ -77,10 +77,11 @@ void ReferenceCheckText(const ValidateResult& result, const ValidateOptions& opt
   const ReferenceCheck& c = result.reference_check;
   if (c.path.empty()) return;
   const planner::PoseEvaluation& ref = c.path.front().evaluation;
+  const planner::PoseEvaluation& consensus = c.path.back().evaluation;
   s << "\nreference check (last stage; reference-path.csv): the consensus of all " << result.runs.size()
     << " runs\nlies " << Fixed(c.consensus_error.translation_mm, 3) << " mm / " << Fixed(c.consensus_error.rotation_deg, 2)
-    << " deg from the reference, with " << Fixed(c.consensus.contact_area_mm2, 2)
-    << " mm^2 of contact and " << Fixed(c.consensus.constrained_penetration_mm, 3)
+    << " deg from the reference, with " << Fixed(consensus.contact_area_mm2, 2)
+    << " mm^2 of contact and " << Fixed(consensus.constrained_penetration_mm, 3)
     << " mm of outlier-robust\npenetration (reference: " << Fixed(ref.contact_area_mm2, 2) << " mm^2, "
     << Fixed(ref.constrained_penetration_mm, 3) << " mm).\n";
   auto describe = [&](int k) {
