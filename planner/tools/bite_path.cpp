@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <vector>
 
 #include "occlude/io/mesh_io.h"
 #include "occlude/planner/evaluation.h"
@@ -44,16 +45,21 @@ int main(int argc, char** argv) {
     std::printf("pivot_L (%.3f %.3f %.3f), occlusal_L (%.3f %.3f %.3f)\n", pivot_L.x(), pivot_L.y(), pivot_L.z(),
                 arch.occlusal_L.x(), arch.occlusal_L.y(), arch.occlusal_L.z());
     std::printf("    s  err_mm err_deg | as is: contact  post%%  maxpen  robust | settled: shift_mm contact  post%%  maxpen  robust\n");
-    for (int k = 0; k <= steps; ++k) {
-      const double s = s_max * k / steps;
-      planner::PoseParameters p;
-      p.translation_mm = s * target.translation_mm;
-      p.rotation_deg = s * target.rotation_deg;
-      const Eigen::Isometry3d X = planner::ComposePose(p, pivot_L, X_ref);
-      const planner::PoseError e = planner::ComparePoses(X, X_ref, points_U);
-      const planner::PoseEvaluation as_is = planner::EvaluatePose(stage, X, request);
+    // The path to s_max: the pivot parameters scale linearly along EvaluatePath's path.
+    planner::PoseParameters end;
+    end.translation_mm = s_max * target.translation_mm;
+    end.rotation_deg = s_max * target.rotation_deg;
+    const std::vector<planner::PathPoint> path = planner::EvaluatePath(
+        stage, X_ref, planner::ComposePose(end, pivot_L, X_ref), pivot_L, points_U, request, std::max(1, steps));
+    for (const planner::PathPoint& point : path) {
+      const double s = s_max * point.s;
+      const Eigen::Isometry3d& X = point.X_LU;
+      const planner::PoseError& e = point.from_start;
+      const planner::PoseEvaluation& as_is = point.evaluation;
       // Settle: the largest shift along the closing direction (-occlusal: upper toward lower)
-      // that keeps the robust measure within the limit (bisection; 0.01 um).
+      // that keeps the robust measure within the limit (bisection; 0.01 um). The planner's own
+      // settle (detail::SettleOnOracle) is internal to the library and moves the pivot
+      // parameters; this one is a pure translation, so that the column reads in mm.
       auto shifted = [&](double c) {
         Eigen::Isometry3d Y = X;
         Y.pretranslate(-c * arch.occlusal_L);
