@@ -110,7 +110,8 @@ std::vector<Isometry3d> Poses(double offset, const Vector3d& axis, const Vector3
   return poses;
 }
 
-const std::vector<double> kOffsets = {5.0, 2.0, 1.0, 0.7, 0.5, 0.3, 0.2, 0.1, 0.05, 0.0, -0.1, -0.2};
+const std::vector<double> kOffsets = {5.0, 2.0, 1.0,  0.7, 0.5,  0.3,
+                                      0.2, 0.1, 0.05, 0.0, -0.1, -0.2};
 
 void RunBoolean(const collision::SphereTree& lower, const collision::SphereTree& upper,
                 const Args& args, const Vector3d& axis, const Vector3d& pivot) {
@@ -136,7 +137,8 @@ void RunBoolean(const collision::SphereTree& lower, const collision::SphereTree&
         req.first_only = true;
         req.delta_mm = 0.1;
         collision::CollisionResult res;
-        us = std::max(us, MedianMicros([&] { collision::Collide(lower, upper, X, req, &res); }, args.reps));
+        us = std::max(
+            us, MedianMicros([&] { collision::Collide(lower, upper, X, req, &res); }, args.reps));
         tests = std::max(tests, res.node_tests);
         btests = std::max(btests, res.bound_tests);
         overlap = overlap || res.overlap;
@@ -155,10 +157,12 @@ void RunBoolean(const collision::SphereTree& lower, const collision::SphereTree&
 
 void RunOracle(const collision::JawOracle& oracle, const Args& args, const Vector3d& axis,
                const Vector3d& pivot) {
-  std::printf("\noracle kSubVoxel (band 0.1 mm, penetration search 0.3 mm): worst over %d poses "
-              "of the median us\n",
-              args.jitter);
-  std::printf("offset  cells_us  query_us(no pts)  query_us(pts)  cells  samples  contacts  max_pen\n");
+  std::printf(
+      "\noracle kSubVoxel (band 0.1 mm, penetration search 0.3 mm): worst over %d poses "
+      "of the median us\n",
+      args.jitter);
+  std::printf(
+      "offset  cells_us  query_us(no pts)  query_us(pts)  cells  samples  contacts  max_pen\n");
   std::mt19937 rng(7);
   double worst_cells = 0.0, worst_no = 0.0, worst_pts = 0.0;
   for (const double offset : kOffsets) {
@@ -172,9 +176,13 @@ void RunOracle(const collision::JawOracle& oracle, const Args& args, const Vecto
       creq.reach_mm = 0.3;
       creq.distance_bound = true;
       collision::CellResult cres;
-      cells_us = std::max(cells_us, MedianMicros([&] {
-        collision::CollectCells(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
-      }, args.reps));
+      cells_us =
+          std::max(cells_us, MedianMicros(
+                                 [&] {
+                                   collision::CollectCells(oracle.lower_tree(), oracle.upper_tree(),
+                                                           X, creq, &cres);
+                                 },
+                                 args.reps));
       collision::OracleRequest req;
       req.level = collision::AccuracyLevel::kSubVoxel;
       req.keep_points = false;
@@ -183,7 +191,8 @@ void RunOracle(const collision::JawOracle& oracle, const Args& args, const Vecto
       pts_us = std::max(pts_us, MedianMicros([&] { oracle.Query(X, req, &res); }, args.reps));
     }
     std::printf("%+6.2f  %8.1f  %16.1f  %13.1f  %5zu  %7zu  %8zu  %7.3f\n", offset, cells_us, no_us,
-                pts_us, res.cells, res.samples_evaluated, res.contact_samples, res.max_penetration_mm);
+                pts_us, res.cells, res.samples_evaluated, res.contact_samples,
+                res.max_penetration_mm);
     worst_cells = std::max(worst_cells, cells_us);
     worst_no = std::max(worst_no, no_us);
     worst_pts = std::max(worst_pts, pts_us);
@@ -205,7 +214,8 @@ void RunOracle(const collision::JawOracle& oracle, const Args& args, const Vecto
     oracle.Query(X, req, &exact);
     for (const auto& c : sub.contacts) {
       collision::SignedDistanceSample s;
-      if (oracle.lower_sdf().Exact(c.p_L, 0.5, &s)) err.push_back(std::abs(s.distance - c.distance_mm));
+      if (oracle.lower_sdf().Exact(c.p_L, 0.5, &s))
+        err.push_back(std::abs(s.distance - c.distance_mm));
     }
     std::vector<std::array<double, 3>> seen;
     for (const auto& c : sub.contacts) seen.push_back({c.p_L.x(), c.p_L.y(), c.p_L.z()});
@@ -214,17 +224,19 @@ void RunOracle(const collision::JawOracle& oracle, const Args& args, const Vecto
     for (const auto& c : exact.contacts) {
       if (c.distance_mm > 0.05) continue;
       ++exact_close;
-      if (!std::binary_search(seen.begin(), seen.end(), std::array<double, 3>{c.p_L.x(), c.p_L.y(), c.p_L.z()})) {
+      if (!std::binary_search(seen.begin(), seen.end(),
+                              std::array<double, 3>{c.p_L.x(), c.p_L.y(), c.p_L.z()})) {
         ++missed;
       }
     }
   }
   std::sort(err.begin(), err.end());
   if (!err.empty()) {
-    std::printf("sub-voxel vs exact over %zu contact samples: median %.5f p95 %.5f max %.5f mm; "
-                "exact contacts within 0.05 mm: %zu, missed by sub-voxel: %zu\n",
-                err.size(), err[err.size() / 2], err[err.size() * 95 / 100], err.back(), exact_close,
-                missed);
+    std::printf(
+        "sub-voxel vs exact over %zu contact samples: median %.5f p95 %.5f max %.5f mm; "
+        "exact contacts within 0.05 mm: %zu, missed by sub-voxel: %zu\n",
+        err.size(), err[err.size() / 2], err[err.size() * 95 / 100], err.back(), exact_close,
+        missed);
   }
 }
 
@@ -239,9 +251,10 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
     cpu.push_back(ThreadSeconds() - t0);
   }
   std::sort(cpu.begin(), cpu.end());
-  std::printf("build: median calling-thread CPU %.3f s, wall %.3f s (last), %.1f MB, %zu band voxels\n",
-              cpu[1], sdf.build_seconds(), static_cast<double>(sdf.MemoryBytes()) / 1e6,
-              sdf.num_band_voxels());
+  std::printf(
+      "build: median calling-thread CPU %.3f s, wall %.3f s (last), %.1f MB, %zu band voxels\n",
+      cpu[1], sdf.build_seconds(), static_cast<double>(sdf.MemoryBytes()) / 1e6,
+      sdf.num_band_voxels());
   // Interpolate: points near the surface (triangle centroids pushed along the
   // normal by up to 0.1 mm), random order and a hot set of 1024.
   std::mt19937 rng(3);
@@ -251,21 +264,24 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
   for (int i = 0; i < (1 << 16); ++i) {
     const std::size_t t = rng() % m.num_triangles();
     const Vector3d c = (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
-    const Vector3d n = (m.corner(t, 1) - m.corner(t, 0)).cross(m.corner(t, 2) - m.corner(t, 0)).normalized();
+    const Vector3d n =
+        (m.corner(t, 1) - m.corner(t, 0)).cross(m.corner(t, 2) - m.corner(t, 0)).normalized();
     pts.push_back(c + u(rng) * n);
   }
   for (const std::size_t n : {std::size_t{1024}, pts.size()}) {
     double sum = 0.0;
     const int rounds = static_cast<int>((1u << 22) / n);
-    const double us = MedianMicros([&] {
-      for (int r = 0; r < rounds; ++r) {
-        for (std::size_t i = 0; i < n; ++i) {
-          double d = 0.0;
-          Vector3d g;
-          if (sdf.Interpolate(pts[i], &d, &g)) sum += d + g.x();
-        }
-      }
-    }, std::max(3, args.reps / 5));
+    const double us = MedianMicros(
+        [&] {
+          for (int r = 0; r < rounds; ++r) {
+            for (std::size_t i = 0; i < n; ++i) {
+              double d = 0.0;
+              Vector3d g;
+              if (sdf.Interpolate(pts[i], &d, &g)) sum += d + g.x();
+            }
+          }
+        },
+        std::max(3, args.reps / 5));
     std::printf("Interpolate with gradient, %zu points: %.1f ns/call (checksum %.3g)\n", n,
                 1e3 * us / (static_cast<double>(rounds) * static_cast<double>(n)), sum);
   }
@@ -277,8 +293,9 @@ int main(int argc, char** argv) {
   const Args args = Parse(argc, argv);
   const auto dir = DataDir() / "cases" / args.case_name;
   if (!std::filesystem::exists(dir / "lower.stl")) {
-    std::printf("occlude_oracle_sweep: case %s not found under %s (set OCCLUDE_DATA_DIR); skipped\n",
-                args.case_name.c_str(), DataDir().c_str());
+    std::printf(
+        "occlude_oracle_sweep: case %s not found under %s (set OCCLUDE_DATA_DIR); skipped\n",
+        args.case_name.c_str(), DataDir().c_str());
     return 0;
   }
   const auto lower = std::make_shared<const io::TriangleMesh>(io::LoadMesh(dir / "lower.stl"));
@@ -297,7 +314,9 @@ int main(int argc, char** argv) {
     collision::OracleOptions with, without;
     without.field_bound_mm = -1.0;
     const collision::JawOracle a(lower, upper, without), b(lower, upper, with);
-    std::printf("offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, same\n");
+    std::printf(
+        "offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, "
+        "same\n");
     std::mt19937 rng(7);
     std::string list = args.compare;
     for (std::size_t start = 0; start < list.size();) {
@@ -315,36 +334,43 @@ int main(int argc, char** argv) {
           collision::OracleResult& r = which == 0 ? ra : rb;
           const double t0 = ThreadSeconds();
           for (const Isometry3d& X : poses) o.Query(X, req, &r);
-          (which == 0 ? ta : tb).push_back(1e6 * (ThreadSeconds() - t0) / static_cast<double>(poses.size()));
+          (which == 0 ? ta : tb)
+              .push_back(1e6 * (ThreadSeconds() - t0) / static_cast<double>(poses.size()));
         }
-        same = same && ra.contact_samples == rb.contact_samples && ra.max_penetration_mm == rb.max_penetration_mm &&
-               ra.contact_area_mm2 == rb.contact_area_mm2 && ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
+        same = same && ra.contact_samples == rb.contact_samples &&
+               ra.max_penetration_mm == rb.max_penetration_mm &&
+               ra.contact_area_mm2 == rb.contact_area_mm2 &&
+               ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
                ra.deep_samples == rb.deep_samples;
       }
       std::sort(ta.begin(), ta.end());
       std::sort(tb.begin(), tb.end());
       const double ma = ta[ta.size() / 2], mb = tb[tb.size() / 2];
-      std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb, ra.cells, rb.cells,
-                  ra.node_tests, rb.node_tests, same ? "yes" : "NO");
+      std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb,
+                  ra.cells, rb.cells, ra.node_tests, rb.node_tests, same ? "yes" : "NO");
     }
     return 0;
   }
   if (!args.profile.empty()) {
     collision::OracleOptions oopt;
     if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
-    if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND")) oopt.field_bound_mm = std::atof(bound);
+    if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND"))
+      oopt.field_bound_mm = std::atof(bound);
     const collision::JawOracle oracle(lower, upper, oopt);
-    const Isometry3d X = Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
+    const Isometry3d X =
+        Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
     collision::OracleRequest req;
     req.level = collision::AccuracyLevel::kSubVoxel;
-    if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH")) req.penetration_search_mm = std::atof(search);
+    if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
+      req.penetration_search_mm = std::atof(search);
     collision::OracleResult res;
     const double t0 = ThreadSeconds();
     std::size_t n = 0;
     // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
     const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
     const bool boolean = which != nullptr && std::string(which) == "boolean";
-    if (which != nullptr && std::string(which) == "voxel") req.level = collision::AccuracyLevel::kVoxel;
+    if (which != nullptr && std::string(which) == "voxel")
+      req.level = collision::AccuracyLevel::kVoxel;
     collision::CollisionRequest creq;
     creq.first_only = true;
     creq.delta_mm = 0.1;
@@ -358,11 +384,14 @@ int main(int argc, char** argv) {
       ++n;
     }
     if (boolean) {
-      std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0, cres.bound_tests);
+      std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0,
+                  cres.bound_tests);
     }
-    std::printf("profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, %zu contacts\n",
-                args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells, res.node_tests,
-                res.samples_evaluated, res.contact_samples);
+    std::printf(
+        "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
+        "%zu contacts\n",
+        args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
+        res.node_tests, res.samples_evaluated, res.contact_samples);
     return 0;
   }
   collision::SphereTreeOptions topt;

@@ -11,11 +11,11 @@
 
 #include "bench_poses.h"
 #include "chart.h"
-#include "user_error.h"
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
 #include "text_format.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -241,7 +241,8 @@ std::vector<BenchRow> RunBench(const BenchCase& bc, const BenchOptions& options)
   if (options.rounds < 1) throw std::invalid_argument("BenchOptions.rounds must be at least 1");
   std::vector<BenchRow> rows;
   for (int round = 0; round < options.rounds; ++round) {
-    if (options.rounds > 1) Log(options, "round " + std::to_string(round + 1) + " of " + std::to_string(options.rounds));
+    if (options.rounds > 1)
+      Log(options, "round " + std::to_string(round + 1) + " of " + std::to_string(options.rounds));
     std::vector<BenchRow> next = RunBenchRound(bc, options);
     if (rows.empty()) {
       rows = std::move(next);
@@ -255,7 +256,8 @@ std::vector<BenchRow> RunBench(const BenchCase& bc, const BenchOptions& options)
   // Speedups from the merged medians: FCL median / IST median at the offset.
   std::map<std::pair<std::string, double>, double> fcl_median;
   for (const BenchRow& r : rows) {
-    if (r.method == "fcl" && r.query != "build") fcl_median[{r.variant + ":" + r.query, r.offset_mm}] = r.us.median;
+    if (r.method == "fcl" && r.query != "build")
+      fcl_median[{r.variant + ":" + r.query, r.offset_mm}] = r.us.median;
   }
   for (BenchRow& r : rows) {
     if (r.fcl_reference.empty()) continue;

@@ -49,7 +49,8 @@ struct BenchOptions {
 };
 
 /// The sphere modes the benchmarks time, in their order.
-inline constexpr collision::SphereMode kSphereModes[] = {collision::SphereMode::kSimple, collision::SphereMode::kOptimized,
+inline constexpr collision::SphereMode kSphereModes[] = {collision::SphereMode::kSimple,
+                                                         collision::SphereMode::kOptimized,
                                                          collision::SphereMode::kExplicit};
 
 /// One CSV row. Build rows: median_us = max_us = wall build time, bytes = memory.

@@ -13,10 +13,10 @@
 #include "bench_accuracy_score.h"
 #include "bench_accuracy_truth.h"
 #include "bench_poses.h"
-#include "percentile.h"
 #include "fcl_peer.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "percentile.h"
 
 namespace occlude::app {
 namespace {

@@ -68,16 +68,17 @@ std::string AccuracyCsv(const std::vector<AccuracyRow>& rows, const std::string&
   for (const AccuracyRow& r : rows) {
     const bool c = r.contacts_defined;
     auto count = [&](std::size_t v) { return c ? std::to_string(v) : std::string(); };
-    csv << r.method << ',' << r.variant << ',' << FixedOrEmpty(r.voxel_mm, 3) << ',' << r.level << ','
-        << FixedOrEmpty(r.us.median, 2) << ',' << FixedOrEmpty(r.p95_err_mm, 6) << ',' << FixedOrEmpty(r.max_err_mm, 6) << ','
-        << count(r.missed) << ',' << count(r.false_contacts) << ',' << r.query << ','
-        << FixedOrEmpty(r.p95_us, 2) << ',' << FixedOrEmpty(r.us.max, 2) << ',' << FixedOrEmpty(r.median_err_mm, 6) << ','
-        << r.claims << ',' << r.unscored << ',' << count(r.truth_contacts) << ','
-        << (c ? Fraction(r.missed, r.truth_contacts) : "") << ',' << count(r.truth_half) << ','
-        << count(r.missed_half) << ',' << (c ? Fraction(r.false_contacts, r.claims) : "") << ','
-        << count(r.false_double) << ',' << FixedOrEmpty(r.pen_err_median_mm, 6) << ','
-        << FixedOrEmpty(r.pen_err_max_mm, 6) << ',' << r.poses << ',' << FixedOrEmpty(r.build_s, 3) << ',' << r.bytes
-        << ',' << (r.pareto ? 1 : 0) << '\n';
+    csv << r.method << ',' << r.variant << ',' << FixedOrEmpty(r.voxel_mm, 3) << ',' << r.level
+        << ',' << FixedOrEmpty(r.us.median, 2) << ',' << FixedOrEmpty(r.p95_err_mm, 6) << ','
+        << FixedOrEmpty(r.max_err_mm, 6) << ',' << count(r.missed) << ',' << count(r.false_contacts)
+        << ',' << r.query << ',' << FixedOrEmpty(r.p95_us, 2) << ',' << FixedOrEmpty(r.us.max, 2)
+        << ',' << FixedOrEmpty(r.median_err_mm, 6) << ',' << r.claims << ',' << r.unscored << ','
+        << count(r.truth_contacts) << ',' << (c ? Fraction(r.missed, r.truth_contacts) : "") << ','
+        << count(r.truth_half) << ',' << count(r.missed_half) << ','
+        << (c ? Fraction(r.false_contacts, r.claims) : "") << ',' << count(r.false_double) << ','
+        << FixedOrEmpty(r.pen_err_median_mm, 6) << ',' << FixedOrEmpty(r.pen_err_max_mm, 6) << ','
+        << r.poses << ',' << FixedOrEmpty(r.build_s, 3) << ',' << r.bytes << ','
+        << (r.pareto ? 1 : 0) << '\n';
   }
   return csv.str();
 }

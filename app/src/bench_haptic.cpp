@@ -18,7 +18,6 @@
 namespace occlude::app {
 namespace {
 
-
 // Replays the trajectory with one `query` per tick. Tick k is released at
 // t0 + k * period (busy-waiting, as a haptic servo loop does); it misses its
 // deadline when the answer comes later than its release plus one period. A

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <thread>
 
-#include "user_error.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {

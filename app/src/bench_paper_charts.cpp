@@ -67,8 +67,8 @@ void AddGuides(const PaperResult& r, LineChart* c, F&& value) {
 std::string FitText(const PaperResult& r, const std::string& prefix) {
   for (const PowerFit& f : r.fits) {
     if (f.what.rfind(prefix, 0) == 0 && f.points >= 2) {
-      return "fitted exponent " + FixedOrEmpty(f.exponent, 2) + " for s in [" + ShortNumber(f.x_lo) + ", " +
-             ShortNumber(f.x_hi) + "] mm";
+      return "fitted exponent " + FixedOrEmpty(f.exponent, 2) + " for s in [" +
+             ShortNumber(f.x_lo) + ", " + ShortNumber(f.x_hi) + "] mm";
     }
   }
   return "";

@@ -21,14 +21,16 @@ std::string BuildCsv(const PaperResult& r) {
          "leaves,"
          "levels,paper_min_nodes,bytes_grid,bytes_octree,bytes_explicit\n";
   for (const PaperBuildRow& b : r.builds) {
-    csv << r.mesh_name << ',' << FixedOrEmpty(b.voxel_mm, 3) << ',' << b.dims.x() << ',' << b.dims.y() << ','
-        << b.dims.z() << ',' << b.paper_grid_n << ',' << FixedOrEmpty(b.paper_dense_cells, 0) << ','
-        << b.surface << ',' << b.proximity << ',' << b.interior << ',' << b.triangle_tests << ','
-        << FixedOrEmpty(b.voxelize_us, 1) << ',' << FixedOrEmpty(b.octree_us, 1) << ',' << b.build_reps << ','
-        << FixedOrEmpty(b.surface_s, 4) << ',' << FixedOrEmpty(b.proximity_s, 4) << ',' << FixedOrEmpty(b.interior_s, 4) << ','
-        << FixedOrEmpty(b.explicit_s, 4) << ',' << FixedOrEmpty(b.tree_us, 1) << ',' << b.nodes << ',' << b.leaves
-        << ',' << b.levels << ',' << b.paper_min_nodes << ',' << b.bytes_grid << ','
-        << b.bytes_octree << ',' << b.bytes_explicit << '\n';
+    csv << r.mesh_name << ',' << FixedOrEmpty(b.voxel_mm, 3) << ',' << b.dims.x() << ','
+        << b.dims.y() << ',' << b.dims.z() << ',' << b.paper_grid_n << ','
+        << FixedOrEmpty(b.paper_dense_cells, 0) << ',' << b.surface << ',' << b.proximity << ','
+        << b.interior << ',' << b.triangle_tests << ',' << FixedOrEmpty(b.voxelize_us, 1) << ','
+        << FixedOrEmpty(b.octree_us, 1) << ',' << b.build_reps << ','
+        << FixedOrEmpty(b.surface_s, 4) << ',' << FixedOrEmpty(b.proximity_s, 4) << ','
+        << FixedOrEmpty(b.interior_s, 4) << ',' << FixedOrEmpty(b.explicit_s, 4) << ','
+        << FixedOrEmpty(b.tree_us, 1) << ',' << b.nodes << ',' << b.leaves << ',' << b.levels << ','
+        << b.paper_min_nodes << ',' << b.bytes_grid << ',' << b.bytes_octree << ','
+        << b.bytes_explicit << '\n';
   }
   return csv.str();
 }
@@ -38,10 +40,12 @@ std::string LevelsCsv(const PaperResult& r) {
   csv << "mesh,voxel_mm,level,nodes,simple_mm3,optimized_mm3,unit_mm3,simple_units,"
          "optimized_units,optimized_over_simple\n";
   for (const PaperLevelRow& l : r.levels) {
-    csv << r.mesh_name << ',' << FixedOrEmpty(l.voxel_mm, 3) << ',' << l.level << ',' << l.nodes << ','
-        << FixedOrEmpty(l.simple_mm3, 4) << ',' << FixedOrEmpty(l.optimized_mm3, 4) << ',' << FixedOrEmpty(l.unit_mm3, 6)
-        << ',' << FixedOrEmpty(l.simple_mm3 / l.unit_mm3, 3) << ',' << FixedOrEmpty(l.optimized_mm3 / l.unit_mm3, 3)
-        << ',' << FixedOrEmpty(l.simple_mm3 > 0 ? l.optimized_mm3 / l.simple_mm3 : std::nan(""), 4) << '\n';
+    csv << r.mesh_name << ',' << FixedOrEmpty(l.voxel_mm, 3) << ',' << l.level << ',' << l.nodes
+        << ',' << FixedOrEmpty(l.simple_mm3, 4) << ',' << FixedOrEmpty(l.optimized_mm3, 4) << ','
+        << FixedOrEmpty(l.unit_mm3, 6) << ',' << FixedOrEmpty(l.simple_mm3 / l.unit_mm3, 3) << ','
+        << FixedOrEmpty(l.optimized_mm3 / l.unit_mm3, 3) << ','
+        << FixedOrEmpty(l.simple_mm3 > 0 ? l.optimized_mm3 / l.simple_mm3 : std::nan(""), 4)
+        << '\n';
   }
   return csv.str();
 }
@@ -50,21 +54,22 @@ std::string FitsCsv(const PaperResult& r) {
   std::ostringstream csv;
   csv << "what,kind,x_lo,x_hi,points,exponent,intercept,slope,r2\n";
   for (const PowerFit& f : r.fits) {
-    csv << '"' << f.what << "\",power," << ShortNumber(f.x_lo) << ',' << ShortNumber(f.x_hi) << ',' << f.points
-        << ',' << FixedOrEmpty(f.exponent, 3) << ",,," << FixedOrEmpty(f.r2, 4) << '\n';
+    csv << '"' << f.what << "\",power," << ShortNumber(f.x_lo) << ',' << ShortNumber(f.x_hi) << ','
+        << f.points << ',' << FixedOrEmpty(f.exponent, 3) << ",,," << FixedOrEmpty(f.r2, 4) << '\n';
   }
   for (const AffineFit& f : r.affine) {
-    csv << '"' << f.what << "\",affine," << ShortNumber(f.x_lo) << ',' << ShortNumber(f.x_hi) << ',' << f.points
-        << ",," << FixedOrEmpty(f.intercept, 2) << ',' << FixedOrEmpty(f.slope, 6) << ',' << FixedOrEmpty(f.r2, 4) << '\n';
+    csv << '"' << f.what << "\",affine," << ShortNumber(f.x_lo) << ',' << ShortNumber(f.x_hi) << ','
+        << f.points << ",," << FixedOrEmpty(f.intercept, 2) << ',' << FixedOrEmpty(f.slope, 6)
+        << ',' << FixedOrEmpty(f.r2, 4) << '\n';
   }
   return csv.str();
 }
 
 std::string SummaryText(const PaperResult& r, const std::string& machine) {
   std::ostringstream s;
-  s << "mesh " << r.mesh_name << ": " << r.triangles << " triangles, " << FixedOrEmpty(r.extent_mm.x(), 1)
-    << " x " << FixedOrEmpty(r.extent_mm.y(), 1) << " x " << FixedOrEmpty(r.extent_mm.z(), 1) << " mm, area "
-    << FixedOrEmpty(r.area_mm2, 0) << " mm^2\n"
+  s << "mesh " << r.mesh_name << ": " << r.triangles << " triangles, "
+    << FixedOrEmpty(r.extent_mm.x(), 1) << " x " << FixedOrEmpty(r.extent_mm.y(), 1) << " x "
+    << FixedOrEmpty(r.extent_mm.z(), 1) << " mm, area " << FixedOrEmpty(r.area_mm2, 0) << " mm^2\n"
     << "machine: " << machine << "; build times: thread CPU, median of up to 3 builds\n\n"
     << "voxel_mm  surface  nodes  leaves  levels  voxelize_ms  octree_ms  surface*s^2/area\n";
   for (const PaperBuildRow& b : r.builds) {

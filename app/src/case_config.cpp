@@ -4,44 +4,69 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "case_config_toml.h"
-#include "user_error.h"
 #include "occlude/io/synthetic_jaws.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
 
 using toml_config::Table;
 
-const std::vector<std::string> kRootTables = {"case",   "lower",  "upper",  "synthetic",
-                                              "accuracy", "contact", "solver", "bounds",
-                                              "start",  "adjust", "output", "report",
-                                              "limits"};
+const std::vector<std::string> kRootTables = {
+    "case",   "lower", "upper",  "synthetic", "accuracy", "contact", "solver",
+    "bounds", "start", "adjust", "output",    "report",   "limits"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
-const std::vector<std::string> kBoundKeys = {"tx_mm", "ty_mm", "tz_mm", "rx_deg", "ry_deg",
-                                             "rz_deg", "locked"};
+const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
+                                             "ry_deg", "rz_deg", "locked"};
 
 // Every "table.key" of the format, so a misplaced key at the root can point to its table.
 std::vector<std::string> AllDottedKeys() {
-  return {"case.name",          "case.units",           "case.up_axis",
-          "lower.file",         "lower.parts",          "upper.file",
-          "upper.parts",        "synthetic.triangles",  "synthetic.seed",
-          "accuracy.accuracy_mm", "accuracy.voxel_mm",  "accuracy.sample_spacing_mm", "accuracy.table",
+  return {"case.name",
+          "case.units",
+          "case.up_axis",
+          "lower.file",
+          "lower.parts",
+          "upper.file",
+          "upper.parts",
+          "synthetic.triangles",
+          "synthetic.seed",
+          "accuracy.accuracy_mm",
+          "accuracy.voxel_mm",
+          "accuracy.sample_spacing_mm",
+          "accuracy.table",
           "accuracy.region_of_interest",
-          "contact.band_mm",    "contact.max_penetration_mm", "solver.name",
-          "solver.starts",      "solver.seed",          "solver.threads",
-          "solver.proposals",   "solver.max_seconds",   "solver.options",
-          "bounds.tx_mm",       "bounds.ty_mm",         "bounds.tz_mm",
-          "bounds.rx_deg",      "bounds.ry_deg",        "bounds.rz_deg",
-          "bounds.locked",      "start.translation_mm", "start.rotation_deg",
-          "start.matrix",       "start.pivot_mm",       "adjust.translation_mm",
-          "adjust.rotation_deg", "output.folder",       "report.map_max_mm",
-          "report.map_penetration_from_mm", "report.image_width_px",
+          "contact.band_mm",
+          "contact.max_penetration_mm",
+          "solver.name",
+          "solver.starts",
+          "solver.seed",
+          "solver.threads",
+          "solver.proposals",
+          "solver.max_seconds",
+          "solver.options",
+          "bounds.tx_mm",
+          "bounds.ty_mm",
+          "bounds.tz_mm",
+          "bounds.rx_deg",
+          "bounds.ry_deg",
+          "bounds.rz_deg",
+          "bounds.locked",
+          "start.translation_mm",
+          "start.rotation_deg",
+          "start.matrix",
+          "start.pivot_mm",
+          "adjust.translation_mm",
+          "adjust.rotation_deg",
+          "output.folder",
+          "report.map_max_mm",
+          "report.map_penetration_from_mm",
+          "report.image_width_px",
           "limits.memory_budget_mb"};
 }
 
@@ -50,7 +75,9 @@ std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& te
   const bool neg = !text.empty() && text[0] == '-';
   const std::string name = (neg || (!text.empty() && text[0] == '+')) ? text.substr(1) : text;
   if (name != "x" && name != "y" && name != "z") {
-    t.Fail("up_axis", "'" + text + "' is not an axis; use \"auto\", \"+x\", \"-x\", \"+y\", \"-y\", \"+z\" or \"-z\"");
+    t.Fail("up_axis",
+           "'" + text +
+               "' is not an axis; use \"auto\", \"+x\", \"-x\", \"+y\", \"-y\", \"+z\" or \"-z\"");
   }
   Eigen::Vector3d a = Eigen::Vector3d::Unit(name[0] - 'x');
   return neg ? Eigen::Vector3d(-a) : a;
@@ -70,7 +97,8 @@ void ReadCase(const Table& t, CaseConfig* c) {
 void CheckFile(const Table& t, const std::string& key, const std::filesystem::path& p) {
   std::error_code ec;
   if (!std::filesystem::exists(p, ec)) {
-    t.Fail(key, "no such file '" + p.string() + "' (relative paths start at the config file's folder)");
+    t.Fail(key,
+           "no such file '" + p.string() + "' (relative paths start at the config file's folder)");
   }
   if (!std::filesystem::is_regular_file(p, ec)) t.Fail(key, "'" + p.string() + "' is not a file");
 }
@@ -87,7 +115,8 @@ JawFiles ReadJaw(const Table& t) {
     return jaw;
   }
   const auto parts = *t.StringArray("parts");
-  if (parts.empty()) t.Fail("parts", "is empty; list the part files (one per tooth, plus the gingiva)");
+  if (parts.empty())
+    t.Fail("parts", "is empty; list the part files (one per tooth, plus the gingiva)");
   jaw.parts = true;
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const auto p = t.Resolve(parts[i]);
@@ -114,7 +143,8 @@ void ReadAccuracy(const Table& t, CaseConfig* c) {
     c->accuracy_mm = *v;
   }
   c->voxel_mm = t.Number("voxel_mm", 0, true, 5, false, "a positive voxel size in mm, at most 5");
-  if (auto v = t.Number("sample_spacing_mm", 0, true, 5, false, "a positive spacing in mm, at most 5")) {
+  if (auto v =
+          t.Number("sample_spacing_mm", 0, true, 5, false, "a positive spacing in mm, at most 5")) {
     c->sample_spacing_mm = *v;
   }
   if (auto v = t.Bool("region_of_interest")) c->region_of_interest = *v;
@@ -122,13 +152,16 @@ void ReadAccuracy(const Table& t, CaseConfig* c) {
     CheckFile(t, "table", *p);
     c->accuracy_table = *p;
   }
-  const ResolutionTable table = c->accuracy_table ? LoadResolutionTable(*c->accuracy_table) : DefaultResolutionTable();
-  c->resolution = c->voxel_mm ? ExplicitResolution(*c->voxel_mm, table) : ChooseResolution(c->accuracy_mm, table);
+  const ResolutionTable table =
+      c->accuracy_table ? LoadResolutionTable(*c->accuracy_table) : DefaultResolutionTable();
+  c->resolution = c->voxel_mm ? ExplicitResolution(*c->voxel_mm, table)
+                              : ChooseResolution(c->accuracy_mm, table);
 }
 
 void ReadContact(const Table& t, CaseConfig* c) {
   t.AllowOnly({"band_mm", "max_penetration_mm"});
-  if (auto v = t.Number("band_mm", 0, true, 5, false, "a band in mm in (0, 5]")) c->contact_band_mm = *v;
+  if (auto v = t.Number("band_mm", 0, true, 5, false, "a band in mm in (0, 5]"))
+    c->contact_band_mm = *v;
   if (auto v = t.Number("max_penetration_mm", 0, false, 5, false, "a depth in mm in [0, 5]")) {
     c->max_penetration_mm = *v;
   }
@@ -173,14 +206,16 @@ void ReadBounds(const Table& t, CaseConfig* c) {
   for (int d = 0; d < kNumDofs; ++d) {
     const std::string& key = kBoundKeys[static_cast<std::size_t>(d)];
     const bool rot = d >= 3;
-    const std::string rule = rot ? "[min, max] in degrees within [-180, 180]" : "[min, max] in mm within [-100, 100]";
+    const std::string rule =
+        rot ? "[min, max] in degrees within [-180, 180]" : "[min, max] in mm within [-100, 100]";
     const auto v = t.NumberArray(key, 2, rule);
     if (!v) continue;
     const double limit = rot ? 180.0 : 100.0;
     if (std::abs((*v)[0]) > limit || std::abs((*v)[1]) > limit) t.Fail(key, "must be " + rule);
     if ((*v)[0] > (*v)[1]) {
       std::ostringstream s;
-      s << "min " << (*v)[0] << " is greater than max " << (*v)[1] << "; write [min, max] with min <= max";
+      s << "min " << (*v)[0] << " is greater than max " << (*v)[1]
+        << "; write [min, max] with min <= max";
       t.Fail(key, s.str());
     }
     c->bounds[static_cast<std::size_t>(d)] = {(*v)[0], (*v)[1]};
@@ -189,8 +224,10 @@ void ReadBounds(const Table& t, CaseConfig* c) {
     for (const auto& name : *locked) {
       const auto it = std::find(kDofNames.begin(), kDofNames.end(), name);
       if (it == kDofNames.end()) {
-        t.Fail("locked", "'" + name + "' is not a degree of freedom; use tx, ty, tz, rx, ry, rz (did you mean '" +
-                             toml_config::ClosestKey(name, kDofNames) + "'?)");
+        t.Fail("locked",
+               "'" + name +
+                   "' is not a degree of freedom; use tx, ty, tz, rx, ry, rz (did you mean '" +
+                   toml_config::ClosestKey(name, kDofNames) + "'?)");
       }
       c->locked[static_cast<std::size_t>(it - kDofNames.begin())] = true;
     }
@@ -206,7 +243,9 @@ void ReadPoseParams(const Table& t, planner::PoseParameters* p) {
   if (auto v = t.NumberArray("translation_mm", 3, "[x, y, z] in mm")) p->translation_mm = Vec3(*v);
   if (auto v = t.NumberArray("rotation_deg", 3, "[x, y, z] in degrees (a rotation vector)")) {
     p->rotation_deg = Vec3(*v);
-    if (p->rotation_deg.norm() > 180.0) t.Fail("rotation_deg", "rotation angle over 180 degrees; give a rotation vector of at most 180 degrees");
+    if (p->rotation_deg.norm() > 180.0)
+      t.Fail("rotation_deg",
+             "rotation angle over 180 degrees; give a rotation vector of at most 180 degrees");
   }
 }
 
@@ -222,11 +261,13 @@ void ReadStart(const Table& t, CaseConfig* c) {
 
 void ReadReport(const Table& t, CaseConfig* c) {
   t.AllowOnly({"map_max_mm", "map_penetration_from_mm", "image_width_px"});
-  if (auto v = t.Number("map_max_mm", 0, true, 5, false, "a length in mm in (0, 5]")) c->report.map_max_mm = *v;
+  if (auto v = t.Number("map_max_mm", 0, true, 5, false, "a length in mm in (0, 5]"))
+    c->report.map_max_mm = *v;
   if (auto v = t.Number("map_penetration_from_mm", 0, false, 1, false, "a depth in mm in [0, 1]")) {
     c->report.map_penetration_from_mm = *v;
   }
-  if (auto v = t.Integer("image_width_px", 300, 4000)) c->report.image_width_px = static_cast<int>(*v);
+  if (auto v = t.Integer("image_width_px", 300, 4000))
+    c->report.image_width_px = static_cast<int>(*v);
 }
 
 void ReadAll(const Table& root, CaseConfig* c) {
@@ -236,11 +277,13 @@ void ReadAll(const Table& root, CaseConfig* c) {
   if (auto t = root.SubTable("upper")) c->upper = ReadJaw(*t);
   if (auto t = root.SubTable("synthetic")) ReadSynthetic(*t, c);
   if (c->synthetic && (c->lower || c->upper)) {
-    root.Fail("synthetic", "a case uses either [synthetic] or [lower]/[upper] mesh files, not both");
+    root.Fail("synthetic",
+              "a case uses either [synthetic] or [lower]/[upper] mesh files, not both");
   }
   if (!c->synthetic && (!c->lower || !c->upper)) {
-    root.Fail(c->lower ? "upper" : "lower",
-              "missing; give [lower] and [upper] (file = ... or parts = [...]) or a [synthetic] table");
+    root.Fail(
+        c->lower ? "upper" : "lower",
+        "missing; give [lower] and [upper] (file = ... or parts = [...]) or a [synthetic] table");
   }
   if (auto t = root.SubTable("accuracy")) ReadAccuracy(*t, c);
   if (auto t = root.SubTable("contact")) ReadContact(*t, c);
@@ -258,10 +301,12 @@ void ReadAll(const Table& root, CaseConfig* c) {
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
-    c->memory_budget_mb = t->Number("memory_budget_mb", 0, true, 1e9, false, "a positive number of megabytes");
+    c->memory_budget_mb =
+        t->Number("memory_budget_mb", 0, true, 1e9, false, "a positive number of megabytes");
   }
   if (c->report.map_max_mm < c->contact_band_mm) {
-    root.Fail("report", "map_max_mm must be at least contact.band_mm so contacts are on the colour scale");
+    root.Fail("report",
+              "map_max_mm must be at least contact.band_mm so contacts are on the colour scale");
   }
 }
 
@@ -329,7 +374,8 @@ Eigen::Isometry3d StartPoseOf(const CaseConfig& config, const Eigen::Vector3d& d
     X.matrix() = *config.start.matrix;
     return X;
   }
-  return planner::ComposePose(config.start.params, config.start.pivot_mm.value_or(default_pivot_L), X);
+  return planner::ComposePose(config.start.params, config.start.pivot_mm.value_or(default_pivot_L),
+                              X);
 }
 
 }  // namespace occlude::app

@@ -78,11 +78,11 @@ struct DofRange {
 struct SolverSettings {
   using Value = std::variant<bool, std::int64_t, double, std::string>;
   std::string name = "auto";
-  int starts = 16;          ///< random starts
-  std::uint64_t seed = 1;   ///< random seed of the starts
-  int threads = 0;          ///< 0 = all cores
-  int proposals = 3;        ///< K poses `propose` keeps
-  double max_seconds = 60;  ///< wall-clock budget of a search
+  int starts = 16;                       ///< random starts
+  std::uint64_t seed = 1;                ///< random seed of the starts
+  int threads = 0;                       ///< 0 = all cores
+  int proposals = 3;                     ///< K poses `propose` keeps
+  double max_seconds = 60;               ///< wall-clock budget of a search
   std::map<std::string, Value> options;  ///< [solver.options], passed to the solver as is
 };
 
@@ -93,8 +93,8 @@ struct StartPose {
 };
 
 struct ReportSettings {
-  double map_max_mm = 0.5;               ///< colour scale 0..this; farther = neutral
-  double map_penetration_from_mm = 0.01; ///< depth shown in the penetration colour
+  double map_max_mm = 0.5;                ///< colour scale 0..this; farther = neutral
+  double map_penetration_from_mm = 0.01;  ///< depth shown in the penetration colour
   int image_width_px = 1000;
 };
 
@@ -104,7 +104,7 @@ struct CaseConfig {
   io::LengthUnit units = io::LengthUnit::kMillimetre;
   std::optional<Eigen::Vector3d> up_axis_L;  ///< unit; nullopt = estimate
 
-  std::optional<JawFiles> lower, upper;      ///< both set, or `synthetic`
+  std::optional<JawFiles> lower, upper;  ///< both set, or `synthetic`
   std::optional<SyntheticSource> synthetic;
 
   double accuracy_mm = 0.02;

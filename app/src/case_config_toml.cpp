@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "case_config.h"
-#include "user_error.h"
 #include "pose_file.h"
+#include "user_error.h"
 
 namespace occlude::app::toml_config {
 
@@ -49,13 +49,20 @@ std::string ClosestKey(const std::string& word, const std::vector<std::string>& 
 
 std::string TypeName(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
   }
 }
 
@@ -68,7 +75,8 @@ void Table::Fail(const std::string& key, const std::string& what) const {
   s << file_.string();
   const auto line = n != nullptr ? n->source().begin.line : table_.source().begin.line;
   if (line > 0) s << ":" << line;
-  s << ": " << (key.empty() ? (path_.empty() ? std::string("(root)") : "[" + path_ + "]") : KeyPath(key))
+  s << ": "
+    << (key.empty() ? (path_.empty() ? std::string("(root)") : "[" + path_ + "]") : KeyPath(key))
     << ": " << what;
   throw UserError(OneLine(s.str()));
 }

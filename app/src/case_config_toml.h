@@ -3,11 +3,12 @@
 // `<file>:<line>: <table.key>: <what is wrong>` so the user finds the key at once.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <Eigen/Core>
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <toml++/toml.h>
 #include <vector>
 
 namespace occlude::app::toml_config {
@@ -36,7 +37,8 @@ class Table {
   /// constraint as the message states it ("a length in mm in (0, 5]").
   std::optional<double> Number(const std::string& key, double lo, bool lo_open, double hi,
                                bool hi_open, const std::string& rule) const;
-  std::optional<std::int64_t> Integer(const std::string& key, std::int64_t lo, std::int64_t hi) const;
+  std::optional<std::int64_t> Integer(const std::string& key, std::int64_t lo,
+                                      std::int64_t hi) const;
   std::optional<std::string> String(const std::string& key) const;
   std::optional<bool> Bool(const std::string& key) const;
   std::optional<std::vector<std::string>> StringArray(const std::string& key) const;
@@ -51,7 +53,9 @@ class Table {
 
   /// Throws UserError at the key's line: "<file>:<line>: <path.key>: <what>".
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const;
-  std::string KeyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string KeyPath(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
   const toml::table& raw() const { return table_; }
 
  private:

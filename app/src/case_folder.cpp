@@ -3,9 +3,9 @@
 
 #include <iostream>
 
-#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -28,7 +28,8 @@ std::shared_ptr<const io::TriangleMesh> LoadJaw(const std::filesystem::path& fil
 
 JawPairCase LoadCaseFolder(const std::filesystem::path& dir) {
   if (!std::filesystem::is_directory(dir)) {
-    throw UserError("--case: '" + dir.string() + "' is not a folder (it must hold upper.stl and lower.stl)");
+    throw UserError("--case: '" + dir.string() +
+                    "' is not a folder (it must hold upper.stl and lower.stl)");
   }
   JawPairCase c;
   c.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();

@@ -1,6 +1,7 @@
 // Case folders as the measuring commands (validate, and later bench) take them:
 // `DIR/upper.stl` and `DIR/lower.stl` in one frame at the registered bite, or
-// the generated synthetic pair. (The machine line stated with every figure: MachineLine, bench_inputs.h.)
+// the generated synthetic pair. (The machine line stated with every figure: MachineLine,
+// bench_inputs.h.)
 #pragma once
 
 #include <Eigen/Geometry>
@@ -24,6 +25,5 @@ struct JawPairCase {
 JawPairCase LoadCaseFolder(const std::filesystem::path& dir);
 /// The synthetic pair with `triangles` per jaw (seed), upper in U at its designed bite.
 JawPairCase SyntheticJawPairCase(std::size_t triangles, std::uint32_t seed);
-
 
 }  // namespace occlude::app

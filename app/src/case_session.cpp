@@ -5,11 +5,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "user_error.h"
 #include "jaw_checks.h"
 #include "memory_guard.h"
 #include "occlude/collision/region_of_interest.h"
 #include "occlude/collision/voxel_grid.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -45,7 +45,9 @@ std::vector<double> ScheduleVoxels(double finest_mm) {
   return {std::max(0.8, 2.0 * finest_mm), finest_mm};
 }
 
-std::vector<double> ScheduleVoxels(const CaseConfig& config) { return ScheduleVoxels(config.VoxelSizeMm()); }
+std::vector<double> ScheduleVoxels(const CaseConfig& config) {
+  return ScheduleVoxels(config.VoxelSizeMm());
+}
 
 collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
                                                 double voxel_mm) {
@@ -80,16 +82,21 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
   clock.Start("loaded the meshes");
   jaws_ = LoadCaseJaws(config_);
   clock.Finish();
-  const std::string lower_name = JawName(config_, config_.lower), upper_name = JawName(config_, config_.upper);
-  for (const std::string& w :
-       JawPairWarnings(*jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity(), lower_name, upper_name)) {
+  const std::string lower_name = JawName(config_, config_.lower),
+                    upper_name = JawName(config_, config_.upper);
+  for (const std::string& w : JawPairWarnings(
+           *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity(), lower_name, upper_name)) {
     std::cerr << "occlude: warning: " << w << "\n";
   }
-  CheckMemory({config_.file.string(), "the contact oracles and the map fields", "accuracy.voxel_mm", 5.0,
-               "decimate the meshes or raise accuracy.sample_spacing_mm",
-               {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
-              [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
-              config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
+  CheckMemory(
+      {config_.file.string(),
+       "the contact oracles and the map fields",
+       "accuracy.voxel_mm",
+       5.0,
+       "decimate the meshes or raise accuracy.sample_spacing_mm",
+       {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
+      [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
+      config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
   std::cerr << "occlude: " << config_.resolution.Describe() << "\n";
   clock.Start("estimated the arch frame");
   arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
@@ -98,10 +105,10 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
 
 Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }
 
-std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
-                                                               std::shared_ptr<const io::TriangleMesh> upper_U,
-                                                               const collision::OracleOptions& options,
-                                                               const std::string& what) {
+std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
+    std::shared_ptr<const io::TriangleMesh> lower_L,
+    std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
+    const std::string& what) {
   StepClock clock;
   clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
   try {
@@ -133,16 +140,22 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
       // A jaw that keeps nearly everything is modelled whole (the cut would save little and
       // cost a copy of the mesh), and so is one that keeps nothing (jaws out of each other's
       // reach: an oracle needs a surface).
-      auto pick = [](const collision::RegionMesh& sub, const std::shared_ptr<const io::TriangleMesh>& whole) {
+      auto pick = [](const collision::RegionMesh& sub,
+                     const std::shared_ptr<const io::TriangleMesh>& whole) {
         const auto kept = static_cast<double>(sub.mesh->num_triangles());
-        return sub.mesh->empty() || kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles()) ? whole
-                                                                                                           : sub.mesh;
+        return sub.mesh->empty() ||
+                       kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles())
+                   ? whole
+                   : sub.mesh;
       };
       const auto lower = pick(roi.lower, jaws_.lower_L), upper = pick(roi.upper, jaws_.upper_U);
       model.lower_cut = lower != jaws_.lower_L;
       model.upper_cut = upper != jaws_.upper_U;
       std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats)
-                << (model.lower_cut || model.upper_cut ? "" : "; too little to cut: modelling the whole jaws") << "\n";
+                << (model.lower_cut || model.upper_cut
+                        ? ""
+                        : "; too little to cut: modelling the whole jaws")
+                << "\n";
       oracles_[index] = BuildOracle(lower, upper, options, " on the region of interest");
       model.region = roi.stats;
       model.build_seconds = roi.stats.seconds;
@@ -159,7 +172,8 @@ const planner::OracleSchedule& CaseSession::Schedule() {
     const std::size_t n = ScheduleVoxels(config_).size();
     // Coarse stages at sub-voxel level; the finest at the level chosen for the accuracy.
     for (std::size_t i = 0; i < n; ++i) {
-      stages_.push_back({&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
+      stages_.push_back(
+          {&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
     }
   }
   return stages_;
@@ -172,9 +186,11 @@ const collision::JawOracle& CaseSession::FinestOracle() {
     collision::OracleOptions base;
     base.sample_spacing_mm = config_.sample_spacing_mm;
     base.arch = arch_;
-    const collision::OracleOptions options = planner::StageOracleOptions(base, ScheduleVoxels(config_), last);
+    const collision::OracleOptions options =
+        planner::StageOracleOptions(base, ScheduleVoxels(config_), last);
     whole_finest_ = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, " on the whole jaws");
-    models_.push_back({options.voxel_size_mm, std::nullopt, whole_finest_->MemoryBytes(), whole_finest_->build_seconds()});
+    models_.push_back({options.voxel_size_mm, std::nullopt, whole_finest_->MemoryBytes(),
+                       whole_finest_->build_seconds()});
   }
   return *whole_finest_;
 }
@@ -192,7 +208,8 @@ const MapFields& CaseSession::Maps() {
   if (!maps_) {
     StepClock clock;
     clock.Start("built the distance fields of the maps");
-    maps_ = std::make_unique<MapFields>(MapFields{MapField(jaws_.lower_L), MapField(jaws_.upper_U)});
+    maps_ =
+        std::make_unique<MapFields>(MapFields{MapField(jaws_.lower_L), MapField(jaws_.upper_U)});
   }
   return *maps_;
 }
@@ -207,8 +224,9 @@ bool SameRegionInputs(const CaseConfig& a, const CaseConfig& b) {
   }
   return a.locked == b.locked && a.start.matrix == b.start.matrix &&
          a.start.params.translation_mm == b.start.params.translation_mm &&
-         a.start.params.rotation_deg == b.start.params.rotation_deg && a.contact_band_mm == b.contact_band_mm &&
-         a.max_penetration_mm == b.max_penetration_mm && a.report.map_max_mm == b.report.map_max_mm;
+         a.start.params.rotation_deg == b.start.params.rotation_deg &&
+         a.contact_band_mm == b.contact_band_mm && a.max_penetration_mm == b.max_penetration_mm &&
+         a.report.map_max_mm == b.report.map_max_mm;
 }
 
 }  // namespace
@@ -220,12 +238,14 @@ bool CaseSession::Reusable(const CaseConfig& other) const {
   };
   const bool same_synthetic =
       config_.synthetic.has_value() == other.synthetic.has_value() &&
-      (!config_.synthetic ||
-       (config_.synthetic->triangles == other.synthetic->triangles && config_.synthetic->seed == other.synthetic->seed));
-  return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) && same_synthetic &&
-         config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
-         ScheduleVoxels(config_) == ScheduleVoxels(other) && config_.sample_spacing_mm == other.sample_spacing_mm &&
-         config_.start.pivot_mm == other.start.pivot_mm && config_.region_of_interest == other.region_of_interest &&
+      (!config_.synthetic || (config_.synthetic->triangles == other.synthetic->triangles &&
+                              config_.synthetic->seed == other.synthetic->seed));
+  return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) &&
+         same_synthetic && config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
+         ScheduleVoxels(config_) == ScheduleVoxels(other) &&
+         config_.sample_spacing_mm == other.sample_spacing_mm &&
+         config_.start.pivot_mm == other.start.pivot_mm &&
+         config_.region_of_interest == other.region_of_interest &&
          (!config_.region_of_interest || oracles_.empty() || SameRegionInputs(config_, other));
 }
 

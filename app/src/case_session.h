@@ -95,7 +95,8 @@ class CaseSession {
   std::vector<OracleModel> models_;
   std::unique_ptr<collision::JawOracle> BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
                                                     std::shared_ptr<const io::TriangleMesh> upper_U,
-                                                    const collision::OracleOptions& options, const std::string& what);
+                                                    const collision::OracleOptions& options,
+                                                    const std::string& what);
   collision::RegionOfInterestRequest RegionRequest(double band_mm) const;
 };
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <sstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <stdexcept>
 
 namespace occlude::app {
@@ -158,7 +158,8 @@ std::string RenderLineChartPng(const LineChart& chart) {
   const int left = 95, right = 300, bottom = 75;
   constexpr double kSubtitleScale = 0.45;
   constexpr int kSubtitleLine = 18;  // pixels per subtitle line
-  const std::vector<std::string> subtitle = WrapChartText(chart.subtitle, kSubtitleScale, chart.width - left - 20);
+  const std::vector<std::string> subtitle =
+      WrapChartText(chart.subtitle, kSubtitleScale, chart.width - left - 20);
   const int top = subtitle.empty() ? 60 : 62 + kSubtitleLine * static_cast<int>(subtitle.size());
   const cv::Rect plot(left, top, chart.width - left - right, chart.height - top - bottom);
   auto px = [&](double fx) { return plot.x + fx * plot.width; };
@@ -270,7 +271,8 @@ std::string RenderLineChartPng(const LineChart& chart) {
   // Titles, axis labels, legend.
   PutText(img, chart.title, cv::Point(left, 30), 0.7, kInk, 2);
   for (std::size_t i = 0; i < subtitle.size(); ++i) {
-    PutText(img, subtitle[i], cv::Point(left, 58 + kSubtitleLine * static_cast<int>(i)), kSubtitleScale, kInk);
+    PutText(img, subtitle[i], cv::Point(left, 58 + kSubtitleLine * static_cast<int>(i)),
+            kSubtitleScale, kInk);
   }
   const cv::Size xs = TextSize(chart.x_label, 0.55);
   PutText(img, chart.x_label, cv::Point(plot.x + (plot.width - xs.width) / 2, chart.height - 22),

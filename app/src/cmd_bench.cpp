@@ -56,20 +56,27 @@ std::string JawName(const BenchArgs& args, const std::string& jaw) {
 // The memory guard at the finest voxel size the run will use: the oracle there is
 // the largest structure the bench builds (its sample spacing as in bench.cpp; FCL's
 // trees are not counted).
-void GuardBenchMemory(const BenchCase& bc, const std::vector<double>& voxels, const BenchArgs& args) {
+void GuardBenchMemory(const BenchCase& bc, const std::vector<double>& voxels,
+                      const BenchArgs& args) {
   if (voxels.empty()) return;
   const double finest = *std::min_element(voxels.begin(), voxels.end());
   std::ostringstream subject;
   subject << "--voxel " << finest;
-  CheckMemory({subject.str(), "the contact oracle", "the finest --voxel", 5.0, "decimate the meshes",
-               {ExtentOf(JawName(args, "lower"), *bc.lower_L), ExtentOf(JawName(args, "upper"), *bc.upper_U)}},
-              [&](double voxel_mm) {
-                collision::OracleOptions options;
-                options.voxel_size_mm = voxel_mm;
-                options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
-                return collision::EstimateOracleMemory(*bc.lower_L, *bc.upper_U, options);
-              },
-              finest, ResolveMemoryBudget(args.memory_budget_mb));
+  CheckMemory(
+      {subject.str(),
+       "the contact oracle",
+       "the finest --voxel",
+       5.0,
+       "decimate the meshes",
+       {ExtentOf(JawName(args, "lower"), *bc.lower_L),
+        ExtentOf(JawName(args, "upper"), *bc.upper_U)}},
+      [&](double voxel_mm) {
+        collision::OracleOptions options;
+        options.voxel_size_mm = voxel_mm;
+        options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
+        return collision::EstimateOracleMemory(*bc.lower_L, *bc.upper_U, options);
+      },
+      finest, ResolveMemoryBudget(args.memory_budget_mb));
 }
 
 // Which of the shared options were given (the modes have their own defaults).
@@ -157,9 +164,9 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
             << bc.upper_U->num_triangles() << " upper triangles), axis (" << bc.axis_L.transpose()
             << "), " << machine << "\n";
   const std::filesystem::path out(args.out);
-  const std::string subtitle =
-      bc.name + " | " + machine + " | query: thread CPU time, median of jittered poses (fastest of " +
-      std::to_string(args.rounds) + " rounds)";
+  const std::string subtitle = bc.name + " | " + machine +
+                               " | query: thread CPU time, median of jittered poses (fastest of " +
+                               std::to_string(args.rounds) + " rounds)";
 
   if (args.haptic) {
     HapticOptions options;
@@ -198,9 +205,10 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
     std::cerr << "occlude: warning: built without FCL (libfcl-dev): the FCL rows are missing\n";
   }
   const std::vector<BenchRow> rows = RunBench(bc, options);
-  const std::string summary = "case " + bc.name + "; " + machine + "; " + std::to_string(options.rounds) +
-                              " rounds of " + std::to_string(options.reps) +
-                              " jittered poses per offset, a row's median the fastest round's\n" + BenchSummary(rows);
+  const std::string summary =
+      "case " + bc.name + "; " + machine + "; " + std::to_string(options.rounds) + " rounds of " +
+      std::to_string(options.reps) +
+      " jittered poses per offset, a row's median the fastest round's\n" + BenchSummary(rows);
   WriteFileAtomic(out / "bench.csv", BenchCsv(rows));
   WriteFileAtomic(out / "bench-summary.txt", summary);
   for (const auto& [file, png] : BenchCharts(rows, subtitle)) WriteFileAtomic(out / file, png);

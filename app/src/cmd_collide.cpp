@@ -62,9 +62,9 @@ std::shared_ptr<io::TriangleMesh> LoadJawOrExplain(const std::vector<std::string
   io::LoadReport report;
   std::vector<std::filesystem::path> paths(files.begin(), files.end());
   try {
-    auto mesh = std::make_shared<io::TriangleMesh>(
-        paths.size() == 1 ? io::LoadMesh(paths[0], options, &report)
-                          : io::LoadJawParts(paths, options, &report));
+    auto mesh = std::make_shared<io::TriangleMesh>(paths.size() == 1
+                                                       ? io::LoadMesh(paths[0], options, &report)
+                                                       : io::LoadJawParts(paths, options, &report));
     for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
     return mesh;
   } catch (const io::MeshError& e) {
@@ -74,23 +74,30 @@ std::shared_ptr<io::TriangleMesh> LoadJawOrExplain(const std::vector<std::string
 
 void RunCollide(const CollideArgs& args) {
   const auto unit = io::ParseLengthUnit(args.units);
-  if (!unit) throw UserError("--units: unknown unit '" + args.units + "' (use mm, cm, m, um or in)");
+  if (!unit)
+    throw UserError("--units: unknown unit '" + args.units + "' (use mm, cm, m, um or in)");
   if (!args.out.empty()) PrepareOutputDir(args.out);
-  const Eigen::Isometry3d X_LU = args.pose.empty() ? Eigen::Isometry3d::Identity() : ReadPoseFile(args.pose);
+  const Eigen::Isometry3d X_LU =
+      args.pose.empty() ? Eigen::Isometry3d::Identity() : ReadPoseFile(args.pose);
   const auto lower_mesh = LoadJawOrExplain(args.lower, *unit);
   const auto upper_mesh = LoadJawOrExplain(args.upper, *unit);
   collision::SphereTreeOptions options;
   options.voxelize.voxel_size_mm = args.voxel_mm;
   const std::string lower_name = "lower jaw (" + JawFilesName(args.lower) + ")";
   const std::string upper_name = "upper jaw (" + JawFilesName(args.upper) + ")";
-  for (const std::string& w : JawPairWarnings(*lower_mesh, *upper_mesh, X_LU, JawFilesName(args.lower), JawFilesName(args.upper))) {
+  for (const std::string& w : JawPairWarnings(*lower_mesh, *upper_mesh, X_LU,
+                                              JawFilesName(args.lower), JawFilesName(args.upper))) {
     std::cerr << "occlude: warning: " << w << "\n";
   }
-  CheckMemory({"--voxel " + FormatMm(args.voxel_mm), "the sphere trees of both jaws", "--voxel", 1e3,
+  CheckMemory({"--voxel " + FormatMm(args.voxel_mm),
+               "the sphere trees of both jaws",
+               "--voxel",
+               1e3,
                "decimate the meshes",
-               {ExtentOf(JawFilesName(args.lower), *lower_mesh), ExtentOf(JawFilesName(args.upper), *upper_mesh)}},
-              SphereTreePairEstimate(*lower_mesh, *upper_mesh, options),
-              args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
+               {ExtentOf(JawFilesName(args.lower), *lower_mesh),
+                ExtentOf(JawFilesName(args.upper), *upper_mesh)}},
+              SphereTreePairEstimate(*lower_mesh, *upper_mesh, options), args.voxel_mm,
+              ResolveMemoryBudget(args.memory_budget_mb));
   const auto lower = BuildTreeOrExplain(lower_mesh, options, lower_name);
   const auto upper = BuildTreeOrExplain(upper_mesh, options, upper_name);
   std::cout << DescribeTree("lower", lower) << "\n" << DescribeTree("upper", upper) << "\n";
@@ -111,8 +118,8 @@ void RunCollide(const CollideArgs& args) {
     << (std::isfinite(res.min_distance_mm) ? std::to_string(res.min_distance_mm) : "null")
     << ", \"query_seconds\": " << seconds << ",\n \"lower_tree\": " << TreeJson(lower)
     << ",\n \"upper_tree\": " << TreeJson(upper) << "}\n";
-  std::cout << "query (" << 1e3 * seconds << " ms): " << res.pairs.size()
-            << " voxel pairs within " << args.delta_mm << " mm, " << res.contacts.size()
+  std::cout << "query (" << 1e3 * seconds << " ms): " << res.pairs.size() << " voxel pairs within "
+            << args.delta_mm << " mm, " << res.contacts.size()
             << " triangle pairs within the band, "
             << (res.triangles_intersect ? "the jaws interpenetrate" : "no triangle intersection")
             << ", minimum distance "
@@ -153,9 +160,11 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--units", args->units, "Unit of the mesh files: mm, cm, m, um, in")
       ->capture_default_str();
   cmd->add_option("--pose", args->pose, "Pose file (JSON with a 4x4 \"X_LU\"); default identity");
-  cmd->add_option("--voxel", args->voxel_mm, "Voxel size, mm")->capture_default_str()
+  cmd->add_option("--voxel", args->voxel_mm, "Voxel size, mm")
+      ->capture_default_str()
       ->check(PositiveMm());
-  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
+  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")
+      ->capture_default_str()
       ->check(BandMm());
   cmd->add_option("--out", args->out, "Output folder for collide.json (and sweep.txt/json)");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
@@ -164,7 +173,8 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--axis", args->axis, "Sweep axis, lower to upper: x, y, z, -x, -y, -z")
       ->capture_default_str();
   cmd->add_option("--reps", args->reps, "Repetitions per timed query in the sweep")
-      ->capture_default_str()->check(CLI::Range(1, 100000));
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   cmd->callback([args] { RunCollide(*args); });
 }
 

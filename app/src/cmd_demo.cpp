@@ -13,12 +13,12 @@
 
 #include "case_config.h"
 #include "commands.h"
-#include "occlude/planner/pose.h"
 #include "memory_guard.h"
 #include "occlude/collision/collide.h"
+#include "occlude/planner/pose.h"
 #include "output_files.h"
-#include "synthetic_case.h"
 #include "sweep.h"
+#include "synthetic_case.h"
 #include "timing.h"
 #include "tree_report.h"
 
@@ -29,7 +29,8 @@ struct DemoArgs {
   std::size_t triangles = 20000;
   std::uint32_t seed = 1;
   double voxel_mm = 0.2;
-  bool voxel_given = false;  ///< --voxel also sets the search's finest voxel (else picked for 0.02 mm)
+  bool voxel_given =
+      false;  ///< --voxel also sets the search's finest voxel (else picked for 0.02 mm)
   double delta_mm = 0.1;
   int reps = 30;
   std::string out = "out/demo";
@@ -44,7 +45,10 @@ std::string DemoConfig(const DemoArgs& args) {
     << "# identity). Edit [adjust] and run `occlude refine` on this file to carry on.\n"
     << "[case]\nname = \"synthetic demo\"\nup_axis = \"+y\"\n"
     << "[synthetic]\ntriangles = " << args.triangles << "\nseed = " << args.seed << "\n"
-    << "[accuracy]\n" << (args.voxel_given ? "voxel_mm = " + std::to_string(args.voxel_mm) : std::string("accuracy_mm = 0.02")) << "\n"
+    << "[accuracy]\n"
+    << (args.voxel_given ? "voxel_mm = " + std::to_string(args.voxel_mm)
+                         : std::string("accuracy_mm = 0.02"))
+    << "\n"
     << "[contact]\nband_mm = " << args.delta_mm << "\nmax_penetration_mm = 0.05\n"
     << "[solver]\nname = \"auto\"\nstarts = 8\nseed = " << args.seed << "\nproposals = 3\n"
     << "[start]\ntranslation_mm = [0.9, 1.2, -0.6]\nrotation_deg = [1.0, -1.5, 0.8]\n"
@@ -68,16 +72,21 @@ void RunSweepDemo(const DemoArgs& args) {
   tree_options.voxelize.voxel_size_mm = args.voxel_mm;
   std::ostringstream subject;
   subject << "--voxel " << args.voxel_mm;
-  CheckMemory({subject.str(), "the sphere trees of both jaws", "--voxel", 1e3, "lower --triangles",
-               {ExtentOf("the synthetic lower jaw", jaws.lower_L), ExtentOf("the synthetic upper jaw", jaws.upper_U)}},
-              SphereTreePairEstimate(jaws.lower_L, jaws.upper_U, tree_options),
-              args.voxel_mm, ResolveMemoryBudget(args.memory_budget_mb));
+  CheckMemory({subject.str(),
+               "the sphere trees of both jaws",
+               "--voxel",
+               1e3,
+               "lower --triangles",
+               {ExtentOf("the synthetic lower jaw", jaws.lower_L),
+                ExtentOf("the synthetic upper jaw", jaws.upper_U)}},
+              SphereTreePairEstimate(jaws.lower_L, jaws.upper_U, tree_options), args.voxel_mm,
+              ResolveMemoryBudget(args.memory_budget_mb));
   const auto lower = BuildTreeOrExplain(std::make_shared<io::TriangleMesh>(jaws.lower_L),
                                         tree_options, "lower jaw");
   const auto upper = BuildTreeOrExplain(std::make_shared<io::TriangleMesh>(jaws.upper_U),
                                         tree_options, "upper jaw");
-  std::cout << "demo: built the implicit sphere trees\n  " << DescribeTree("lower", lower)
-            << "\n  " << DescribeTree("upper", upper) << "\n";
+  std::cout << "demo: built the implicit sphere trees\n  " << DescribeTree("lower", lower) << "\n  "
+            << DescribeTree("upper", upper) << "\n";
 
   const collision::CollisionPair pair(lower, upper);  // A = lower (frame L), B = upper (frame U)
   SweepOptions sweep;
@@ -87,11 +96,14 @@ void RunSweepDemo(const DemoArgs& args) {
   sweep.offsets_mm = {2.0, 1.0, 0.5, 0.3, 0.2, 0.1, 0.05, 0.0, -0.05, -0.1, -0.2};
   const std::vector<SweepRow> rows = RunSweep(pair, jaws.X_LU, sweep);
   std::ostringstream table;
-  table << "Upper jaw moved along the occlusal axis from the ground-truth bite (offset > 0 = open).\n"
-        << "voxel " << args.voxel_mm << " mm, delta " << args.delta_mm << " mm, explicit sphere tree, "
-        << "median of " << args.reps << " runs (pairs: " << std::max(1, args.reps / 3)
-        << ", exact: " << std::max(1, args.reps / 10) << "), one thread; thread CPU time in microseconds\n"
-        << SweepTable(rows);
+  table
+      << "Upper jaw moved along the occlusal axis from the ground-truth bite (offset > 0 = open).\n"
+      << "voxel " << args.voxel_mm << " mm, delta " << args.delta_mm
+      << " mm, explicit sphere tree, "
+      << "median of " << args.reps << " runs (pairs: " << std::max(1, args.reps / 3)
+      << ", exact: " << std::max(1, args.reps / 10)
+      << "), one thread; thread CPU time in microseconds\n"
+      << SweepTable(rows);
   std::cout << table.str();
 
   WriteSyntheticCase(jaws, options, args.out);
@@ -102,7 +114,8 @@ void RunSweepDemo(const DemoArgs& args) {
        << ",\n  \"sweep\": " << SweepJson(rows) << "\n}\n";
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.json", json.str());
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.txt", table.str());
-  std::cout << "demo: wrote " << args.out << "/{upper.stl, lower.stl, truth.json, demo.json, demo.txt}\n";
+  std::cout << "demo: wrote " << args.out
+            << "/{upper.stl, lower.stl, truth.json, demo.json, demo.txt}\n";
 }
 
 void RunDemo(const DemoArgs& args) {
@@ -110,7 +123,8 @@ void RunDemo(const DemoArgs& args) {
   const std::string text = DemoConfig(args);
   const CaseConfig config = ParseCaseConfig(text, out / "case.toml");
   std::cout << "demo: occlude propose on the built-in synthetic pair (" << args.triangles
-            << " triangles per jaw, seed " << args.seed << "), from a start 1.6 mm / 2 deg off the designed bite\n";
+            << " triangles per jaw, seed " << args.seed
+            << "), from a start 1.6 mm / 2 deg off the designed bite\n";
   const Eigen::Isometry3d X_LU = ProposeAndReport(config, out.string(), args.memory_budget_mb);
   WriteFileAtomic(out / "case.toml", text);
   // Against the ground truth (identity), at the arch's extent: the largest displacement of
@@ -122,8 +136,10 @@ void RunDemo(const DemoArgs& args) {
     return MakeSyntheticOrExplain(options);
   }();
   double worst_mm = 0.0;
-  for (const Eigen::Vector3d& v : jaws.upper_U.vertices) worst_mm = std::max(worst_mm, (X_LU * v - v).norm());
-  const double angle_deg = Eigen::AngleAxisd(X_LU.linear()).angle() * 180.0 / 3.14159265358979323846;
+  for (const Eigen::Vector3d& v : jaws.upper_U.vertices)
+    worst_mm = std::max(worst_mm, (X_LU * v - v).norm());
+  const double angle_deg =
+      Eigen::AngleAxisd(X_LU.linear()).angle() * 180.0 / 3.14159265358979323846;
   std::cout << "demo: proposal 1 lies within " << std::setprecision(3) << worst_mm
             << " mm (largest vertex displacement) and " << angle_deg
             << " deg of the designed bite; report in " << (out / "report.html").string()
@@ -134,24 +150,29 @@ void RunDemo(const DemoArgs& args) {
 }  // namespace
 
 void AddDemoCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("demo",
-                                 "Run the main job on the built-in synthetic jaw pair: propose the occlusion from a "
-                                 "perturbed start, report it, compare with the designed bite");
+  auto* cmd = app.add_subcommand(
+      "demo",
+      "Run the main job on the built-in synthetic jaw pair: propose the occlusion from a "
+      "perturbed start, report it, compare with the designed bite");
   auto args = std::make_shared<DemoArgs>();
   cmd->add_option("--triangles", args->triangles, "Triangle budget per jaw")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Generator seed")->capture_default_str();
-  cmd->add_option("--voxel", args->voxel_mm,
-                  "Voxel size of the --sweep and, when given, of the search's finest oracle (default: "
-                  "picked for 0.02 mm accuracy), mm")
+  cmd->add_option(
+         "--voxel", args->voxel_mm,
+         "Voxel size of the --sweep and, when given, of the search's finest oracle (default: "
+         "picked for 0.02 mm accuracy), mm")
       ->capture_default_str()
       ->check(PositiveMm());
-  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")->capture_default_str()
+  cmd->add_option("--delta", args->delta_mm, "Contact band, mm")
+      ->capture_default_str()
       ->check(BandMm());
-  cmd->add_option("--reps", args->reps, "Repetitions per timed query of the --sweep")->capture_default_str()
+  cmd->add_option("--reps", args->reps, "Repetitions per timed query of the --sweep")
+      ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--out", args->out, "Output folder")->capture_default_str();
   cmd->add_flag("--sweep", args->sweep,
-                "Also time the sphere-tree queries along the occlusal axis through the bite (demo.txt, demo.json)");
+                "Also time the sphere-tree queries along the occlusal axis through the bite "
+                "(demo.txt, demo.json)");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([cmd, args] {
     args->voxel_given = cmd->count("--voxel") > 0;

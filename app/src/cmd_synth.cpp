@@ -51,7 +51,8 @@ void WriteSyntheticCase(const io::SyntheticJawPair& pair, const io::SyntheticJaw
   try {
     io::WriteBinaryStl(pair.upper_U.Transformed(pair.X_LU), dir / "upper.stl",
                        "occlude synthetic upper jaw (frame L, mm)");
-    io::WriteBinaryStl(pair.lower_L, dir / "lower.stl", "occlude synthetic lower jaw (frame L, mm)");
+    io::WriteBinaryStl(pair.lower_L, dir / "lower.stl",
+                       "occlude synthetic lower jaw (frame L, mm)");
   } catch (const io::MeshError& e) {
     throw UserError(e.what());
   }

@@ -43,7 +43,8 @@ std::filesystem::path PrepareCaseOutput(const CaseConfig& config, const std::str
 /// `occlude propose` on a loaded config (what `propose` and `demo` run): searches, writes the
 /// K proposals and the report of the best to OutputFolder(config, out_option), prints them;
 /// returns the best pose X_LU.
-Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option, double memory_budget_mb);
+Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option,
+                                   double memory_budget_mb);
 
 void AddSynthCommand(CLI::App& app);
 void AddDemoCommand(CLI::App& app);

@@ -19,8 +19,10 @@ inline constexpr double kJawsFarApartMm = 50.0;
 /// Warnings (one line each, without the "warning:" prefix) for the jaws at the
 /// pose X_LU: far apart, or identical (same triangles, vertices within 1e-9 mm).
 /// `lower_name` and `upper_name` name the files in the messages.
-std::vector<std::string> JawPairWarnings(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
-                                         const Eigen::Isometry3d& X_LU, const std::string& lower_name,
+std::vector<std::string> JawPairWarnings(const io::TriangleMesh& lower_L,
+                                         const io::TriangleMesh& upper_U,
+                                         const Eigen::Isometry3d& X_LU,
+                                         const std::string& lower_name,
                                          const std::string& upper_name);
 
 }  // namespace occlude::app

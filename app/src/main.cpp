@@ -45,8 +45,10 @@ int main(int argc, char** argv) {
   } catch (const occlude::app::UserError& e) {
     return Report(e.what(), 1);
   } catch (const std::bad_alloc&) {
-    return Report("out of memory; use a coarser voxel size or lower --memory-budget-mb so that the memory "
-                  "guard stops such runs before they start", 2);
+    return Report(
+        "out of memory; use a coarser voxel size or lower --memory-budget-mb so that the memory "
+        "guard stops such runs before they start",
+        2);
   } catch (const std::exception& e) {
     return Report(e.what(), 2);
   }

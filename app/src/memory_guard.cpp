@@ -35,16 +35,17 @@ void CheckGrid(const MemoryCheck& check, double voxel_mm) {
     const double smallest = mesh.extent_mm / kGridVoxels;
     if (smallest > check.max_voxel_mm) {
       throw UserError(mesh.name + ": the mesh spans " + Number(mesh.extent_mm) +
-                      " mm, too large for a voxel grid at any voxel size up to " + Number(check.max_voxel_mm) +
-                      " mm (at most " + Number(kGridVoxels) +
+                      " mm, too large for a voxel grid at any voxel size up to " +
+                      Number(check.max_voxel_mm) + " mm (at most " + Number(kGridVoxels) +
                       " voxels along an axis); check the file's units and coordinates");
     }
     if (voxel_mm < smallest) {
-      throw UserError(mesh.name + ": voxel grid too large: the mesh spans " + Number(mesh.extent_mm) +
-                      " mm, which at voxel " + Number(voxel_mm) + " mm needs " +
-                      Number(mesh.extent_mm / voxel_mm) + " voxels along an axis (at most " +
-                      Number(kGridVoxels) + "); the smallest voxel size that fits is about " +
-                      Number(RoundUpTwoDigits(smallest)) + " mm: set " + check.voxel_fix + " to at least that");
+      throw UserError(
+          mesh.name + ": voxel grid too large: the mesh spans " + Number(mesh.extent_mm) +
+          " mm, which at voxel " + Number(voxel_mm) + " mm needs " +
+          Number(mesh.extent_mm / voxel_mm) + " voxels along an axis (at most " +
+          Number(kGridVoxels) + "); the smallest voxel size that fits is about " +
+          Number(RoundUpTwoDigits(smallest)) + " mm: set " + check.voxel_fix + " to at least that");
     }
   }
 }
@@ -53,8 +54,9 @@ void CheckGrid(const MemoryCheck& check, double voxel_mm) {
 
 std::string JawFilesName(const std::vector<std::string>& files) {
   if (files.empty()) return "(no files)";
-  return files.size() == 1 ? files.front()
-                           : files.front() + " + " + std::to_string(files.size() - 1) + " more part files";
+  return files.size() == 1
+             ? files.front()
+             : files.front() + " + " + std::to_string(files.size() - 1) + " more part files";
 }
 
 MeshExtent ExtentOf(const std::string& name, const io::TriangleMesh& mesh) {
@@ -77,14 +79,17 @@ void AddMemoryBudgetOption(CLI::App* cmd, double* budget_mb) {
 }
 
 MemoryBudget ResolveMemoryBudget(double option_mb, std::optional<double> config_mb) {
-  if (option_mb > 0) return {static_cast<std::size_t>(option_mb * kBytesPerMb), "--memory-budget-mb"};
-  if (config_mb) return {static_cast<std::size_t>(*config_mb * kBytesPerMb), "limits.memory_budget_mb"};
+  if (option_mb > 0)
+    return {static_cast<std::size_t>(option_mb * kBytesPerMb), "--memory-budget-mb"};
+  if (config_mb)
+    return {static_cast<std::size_t>(*config_mb * kBytesPerMb), "limits.memory_budget_mb"};
   const std::size_t bytes = collision::DefaultMemoryBudgetBytes();
   return {bytes, "the default, a quarter of the physical memory"};
 }
 
 std::function<collision::MemoryEstimate(double voxel_mm)> SphereTreePairEstimate(
-    const io::TriangleMesh& lower, const io::TriangleMesh& upper, const collision::SphereTreeOptions& options) {
+    const io::TriangleMesh& lower, const io::TriangleMesh& upper,
+    const collision::SphereTreeOptions& options) {
   return [&lower, &upper, options](double voxel_mm) {
     collision::SphereTreeOptions o = options;
     o.voxelize.voxel_size_mm = voxel_mm;
@@ -101,7 +106,8 @@ void CheckMemory(const MemoryCheck& check,
   const collision::MemoryEstimate need = estimate(voxel_mm);
   if (need.peak_bytes <= budget.bytes) return;
   const auto peak = [&](double s) { return estimate(s).peak_bytes; };
-  const double fit = collision::SmallestFittingVoxelMm(peak, voxel_mm, check.max_voxel_mm, budget.bytes);
+  const double fit =
+      collision::SmallestFittingVoxelMm(peak, voxel_mm, check.max_voxel_mm, budget.bytes);
   std::ostringstream s;
   s << check.subject << ": building " << check.building << " at voxel " << Number(voxel_mm)
     << " mm needs about " << Megabytes(need.peak_bytes) << ", over the memory budget of "

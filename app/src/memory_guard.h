@@ -48,9 +48,9 @@ MeshExtent ExtentOf(const std::string& name, const io::TriangleMesh& mesh);
 
 /// What a command builds and how the user changes its voxel size.
 struct MemoryCheck {
-  std::string subject;    ///< starts the message: the files or config concerned
-  std::string building;   ///< "the sphere trees", "the contact oracle and the map fields"
-  std::string voxel_fix;  ///< how to set a voxel size: "--voxel", "accuracy.voxel_mm"
+  std::string subject;        ///< starts the message: the files or config concerned
+  std::string building;       ///< "the sphere trees", "the contact oracle and the map fields"
+  std::string voxel_fix;      ///< how to set a voxel size: "--voxel", "accuracy.voxel_mm"
   double max_voxel_mm = 5.0;  ///< largest voxel size the command accepts
   /// What to do when no voxel size fits (what else the memory grows with).
   std::string no_fit_fix = "decimate the meshes";
@@ -72,7 +72,8 @@ void CheckMemory(const MemoryCheck& check,
 /// The estimate of both jaws' sphere trees built with `options` (at the voxel
 /// size passed), for CheckMemory. The meshes must outlive the function.
 std::function<collision::MemoryEstimate(double voxel_mm)> SphereTreePairEstimate(
-    const io::TriangleMesh& lower, const io::TriangleMesh& upper, const collision::SphereTreeOptions& options);
+    const io::TriangleMesh& lower, const io::TriangleMesh& upper,
+    const collision::SphereTreeOptions& options);
 
 /// Megabytes (10^6 bytes) as text with at most 3 significant digits above 10.
 std::string Megabytes(std::size_t bytes);

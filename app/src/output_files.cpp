@@ -1,11 +1,12 @@
 // Atomic output files (see output_files.h).
 #include "output_files.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <unistd.h>
 
 #include "user_error.h"
 
@@ -14,7 +15,8 @@ namespace occlude::app {
 void PrepareOutputDir(const std::filesystem::path& dir) {
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
-    throw UserError(dir.string() + ": output path exists and is not a folder; choose another --out");
+    throw UserError(dir.string() +
+                    ": output path exists and is not a folder; choose another --out");
   }
   std::filesystem::create_directories(dir, ec);
   if (ec) {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <thread>
 
-#include "user_error.h"
 #include "occlude/planner/evaluation.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -14,18 +14,21 @@ namespace {
   throw UserError(config.file.string() + ": " + key + ": " + what);
 }
 
-double NumberOption(const CaseConfig& config, const std::string& key, const SolverSettings::Value& v) {
+double NumberOption(const CaseConfig& config, const std::string& key,
+                    const SolverSettings::Value& v) {
   if (const auto* d = std::get_if<double>(&v)) return *d;
   if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
   Fail(config, "solver.options." + key, "must be a number");
 }
 
-std::int64_t IntegerOption(const CaseConfig& config, const std::string& key, const SolverSettings::Value& v) {
+std::int64_t IntegerOption(const CaseConfig& config, const std::string& key,
+                           const SolverSettings::Value& v) {
   if (const auto* i = std::get_if<std::int64_t>(&v)) return *i;
   Fail(config, "solver.options." + key, "must be an integer");
 }
 
-std::string StringOption(const CaseConfig& config, const std::string& key, const SolverSettings::Value& v) {
+std::string StringOption(const CaseConfig& config, const std::string& key,
+                         const SolverSettings::Value& v) {
   if (const auto* s = std::get_if<std::string>(&v)) return *s;
   Fail(config, "solver.options." + key, "must be a string");
 }
@@ -52,10 +55,15 @@ void ApplyOption(const CaseConfig& config, const std::string& key, const SolverS
       r->max_evaluations = static_cast<int>(IntegerOption(config, key, v));
     } else if (key == "penetration_measure") {
       const std::string m = StringOption(config, key, v);
-      if (m == "max") r->penetration_measure = planner::PenetrationMeasure::kMax;
-      else if (m == "outlier-area") r->penetration_measure = planner::PenetrationMeasure::kOutlierArea;
-      else if (m == "percentile") r->penetration_measure = planner::PenetrationMeasure::kPercentile;
-      else Fail(config, path, "'" + m + "' is not a measure; use \"outlier-area\", \"max\" or \"percentile\"");
+      if (m == "max")
+        r->penetration_measure = planner::PenetrationMeasure::kMax;
+      else if (m == "outlier-area")
+        r->penetration_measure = planner::PenetrationMeasure::kOutlierArea;
+      else if (m == "percentile")
+        r->penetration_measure = planner::PenetrationMeasure::kPercentile;
+      else
+        Fail(config, path,
+             "'" + m + "' is not a measure; use \"outlier-area\", \"max\" or \"percentile\"");
     } else if (key == "outlier_area_mm2") {
       r->outlier_area_mm2 = NumberOption(config, key, v);
     } else if (key == "penetration_percentile") {
@@ -79,7 +87,8 @@ void ApplyOption(const CaseConfig& config, const std::string& key, const SolverS
     } else {
       const std::string near = Closest(key, SolverOptionKeys());
       Fail(config, path,
-           "unknown solver option" + (near.empty() ? std::string("") : "; did you mean '" + near + "'?") +
+           "unknown solver option" +
+               (near.empty() ? std::string("") : "; did you mean '" + near + "'?") +
                " (see plan_config.h or the README)");
     }
   } catch (const std::invalid_argument& e) {
@@ -90,15 +99,25 @@ void ApplyOption(const CaseConfig& config, const std::string& key, const SolverS
 }  // namespace
 
 const std::vector<std::string>& SolverOptionKeys() {
-  static const std::vector<std::string> keys = {
-      "nlopt_local",    "global_samples",          "max_evaluations",     "penetration_measure",
-      "outlier_area_mm2", "penetration_percentile", "spike_patch_max_mm2", "bilateral_posterior_weight",
-      "seat_window_mm", "seat_scale_mm",           "seat_penetration_allowance_mm", "seat_min_facing",
-      "distinct_translation_mm", "distinct_rotation_deg"};
+  static const std::vector<std::string> keys = {"nlopt_local",
+                                                "global_samples",
+                                                "max_evaluations",
+                                                "penetration_measure",
+                                                "outlier_area_mm2",
+                                                "penetration_percentile",
+                                                "spike_patch_max_mm2",
+                                                "bilateral_posterior_weight",
+                                                "seat_window_mm",
+                                                "seat_scale_mm",
+                                                "seat_penetration_allowance_mm",
+                                                "seat_min_facing",
+                                                "distinct_translation_mm",
+                                                "distinct_rotation_deg"};
   return keys;
 }
 
-planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config, const Eigen::Isometry3d& X_LU_start,
+planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config,
+                                           const Eigen::Isometry3d& X_LU_start,
                                            const Eigen::Vector3d& pivot_L) {
   planner::PlanRequest r;
   r.X_LU_start = X_LU_start;
@@ -112,8 +131,9 @@ planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config, const Eigen
   }
   r.num_starts = config.solver.starts;
   r.seed = static_cast<std::uint32_t>(config.solver.seed);
-  r.num_threads = config.solver.threads > 0 ? config.solver.threads
-                                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  r.num_threads = config.solver.threads > 0
+                      ? config.solver.threads
+                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   r.max_proposals = config.solver.proposals;
   r.max_seconds = config.solver.max_seconds;
   r.contact_band_mm = config.contact_band_mm;
@@ -124,12 +144,14 @@ planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config, const Eigen
     r.lower_bound.rotation_deg[i] = config.bounds[static_cast<std::size_t>(i + 3)].min;
     r.upper_bound.rotation_deg[i] = config.bounds[static_cast<std::size_t>(i + 3)].max;
   }
-  for (int i = 0; i < kNumDofs; ++i) r.locked[static_cast<std::size_t>(i)] = config.locked[static_cast<std::size_t>(i)];
+  for (int i = 0; i < kNumDofs; ++i)
+    r.locked[static_cast<std::size_t>(i)] = config.locked[static_cast<std::size_t>(i)];
   for (const auto& [key, value] : config.solver.options) ApplyOption(config, key, value, &r);
   try {
     planner::ValidateRequest(r);
   } catch (const std::invalid_argument& e) {
-    throw UserError(config.file.string() + ": the search settings ([solver], [bounds], [contact]): " + e.what());
+    throw UserError(config.file.string() +
+                    ": the search settings ([solver], [bounds], [contact]): " + e.what());
   }
   return r;
 }

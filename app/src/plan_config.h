@@ -21,7 +21,8 @@ namespace occlude::app {
 
 /// The request for a search from X_LU_start about pivot_L (mm, in L at the pose as given:
 /// the pivot at X_LU_start is X_LU_start * pivot_L). Throws UserError naming the file and key.
-planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config, const Eigen::Isometry3d& X_LU_start,
+planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config,
+                                           const Eigen::Isometry3d& X_LU_start,
                                            const Eigen::Vector3d& pivot_L);
 
 /// The [solver.options] keys PlanRequestFromConfig understands.

@@ -41,14 +41,17 @@ Eigen::Isometry3d ReadPoseFile(const std::filesystem::path& file) {
   }
   const nlohmann::json& rows = j[key];
   Eigen::Matrix4d m;
-  if (!rows.is_array() || rows.size() != 4) throw UserError(file.string() + ": \"" + key + "\" is not a 4x4 array");
+  if (!rows.is_array() || rows.size() != 4)
+    throw UserError(file.string() + ": \"" + key + "\" is not a 4x4 array");
   for (int r = 0; r < 4; ++r) {
     const auto& row = rows[static_cast<std::size_t>(r)];
-    if (!row.is_array() || row.size() != 4) throw UserError(file.string() + ": \"" + key + "\" is not a 4x4 array");
+    if (!row.is_array() || row.size() != 4)
+      throw UserError(file.string() + ": \"" + key + "\" is not a 4x4 array");
     for (int c = 0; c < 4; ++c) {
       const auto& v = row[static_cast<std::size_t>(c)];
       if (!v.is_number()) {
-        throw UserError(file.string() + ": \"" + key + "\" has a non-number entry (NaN must not be used)");
+        throw UserError(file.string() + ": \"" + key +
+                        "\" has a non-number entry (NaN must not be used)");
       }
       m(r, c) = v.get<double>();
     }

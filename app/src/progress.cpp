@@ -18,7 +18,8 @@ void StepClock::Start(const std::string& step) {
 void StepClock::Finish() {
   if (!step_.empty() && NowSeconds() - t0_ > 1.0) {
     std::ostringstream s;
-    s << std::fixed << std::setprecision(2) << "occlude: " << step_ << " (" << NowSeconds() - t0_ << " s)\n";
+    s << std::fixed << std::setprecision(2) << "occlude: " << step_ << " (" << NowSeconds() - t0_
+      << " s)\n";
     std::cerr << s.str() << std::flush;
   }
   step_.clear();
@@ -38,8 +39,8 @@ void ProgressBar::Update(int done, int total) {
   const int filled = total > 0 ? kWidth * done / total : kWidth;
   std::ostringstream s;
   s << "\rocclude: " << task_ << " [" << std::string(static_cast<std::size_t>(filled), '#')
-    << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << done << "/" << total << " ("
-    << std::fixed << std::setprecision(1) << NowSeconds() - t0_ << " s)";
+    << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << done << "/" << total
+    << " (" << std::fixed << std::setprecision(1) << NowSeconds() - t0_ << " s)";
   std::cerr << s.str() << std::flush;
   drawn_ = true;
 }

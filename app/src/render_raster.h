@@ -29,11 +29,13 @@ struct Image {
   Image() = default;
   Image(int w, int h, Rgb fill);
   Rgb At(int x, int y) const {
-    const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x));
+    const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(x));
     return {rgb[i], rgb[i + 1], rgb[i + 2]};
   }
   void Set(int x, int y, Rgb c) {
-    const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x));
+    const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(x));
     rgb[i] = c[0];
     rgb[i + 1] = c[1];
     rgb[i + 2] = c[2];
@@ -45,7 +47,8 @@ struct OrthoView {
   Eigen::Vector3d right_L = Eigen::Vector3d::UnitX();
   Eigen::Vector3d up_L = Eigen::Vector3d::UnitY();
   Eigen::Vector3d view_L = -Eigen::Vector3d::UnitZ();  ///< into the screen
-  Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();  ///< (right, up) coordinates at the image centre
+  Eigen::Vector2d centre_mm =
+      Eigen::Vector2d::Zero();  ///< (right, up) coordinates at the image centre
   double px_per_mm = 10.0;
   int width = 800;
   int height = 600;
@@ -64,7 +67,8 @@ struct OrthoView {
 /// A view looking along `view_L` with `up_L` (made perpendicular) up, framing
 /// `points_L` in width x height pixels with `margin_px` around them.
 OrthoView FitView(const Eigen::Vector3d& view_L, const Eigen::Vector3d& up_L,
-                  const std::vector<Eigen::Vector3d>& points_L, int width, int height, int margin_px);
+                  const std::vector<Eigen::Vector3d>& points_L, int width, int height,
+                  int margin_px);
 
 /// One mesh to draw: its pose in L, a scalar per vertex (or none) and an id (>= 0).
 struct Surface {
@@ -89,8 +93,8 @@ GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces);
 /// Colours a G-buffer: colour(id, value) times the pixel's shade, `background`
 /// where nothing was drawn; then averages `factor` x `factor` blocks (the
 /// supersampling factor the view was scaled by).
-Image Resolve(const GBuffer& g, const std::function<Rgb(int id, float value)>& colour, Rgb background,
-              int factor);
+Image Resolve(const GBuffer& g, const std::function<Rgb(int id, float value)>& colour,
+              Rgb background, int factor);
 
 /// Area-weighted unit vertex normals of a mesh (in its own frame).
 std::vector<Eigen::Vector3f> VertexNormals(const io::TriangleMesh& mesh);

@@ -9,11 +9,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "user_error.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/collision/voxel_grid.h"
 #include "report_colours.h"
 #include "timing.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -27,7 +27,8 @@ std::uint64_t CellKey(const Eigen::Vector3i& c) {
 }
 
 Eigen::Vector3i CellOf(const Eigen::Vector3d& p, double cell) {
-  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)), static_cast<int>(std::floor(p.y() / cell)),
+  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)),
+                         static_cast<int>(std::floor(p.y() / cell)),
                          static_cast<int>(std::floor(p.z() / cell)));
 }
 
@@ -37,7 +38,8 @@ std::unordered_set<std::uint64_t> OccupiedCells(const io::TriangleMesh& mesh, do
   std::unordered_set<std::uint64_t> cells;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
     const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-    const Eigen::Vector3i lo = CellOf(a.cwiseMin(b).cwiseMin(c), cell), hi = CellOf(a.cwiseMax(b).cwiseMax(c), cell);
+    const Eigen::Vector3i lo = CellOf(a.cwiseMin(b).cwiseMin(c), cell),
+                          hi = CellOf(a.cwiseMax(b).cwiseMax(c), cell);
     for (int x = lo.x(); x <= hi.x(); ++x) {
       for (int y = lo.y(); y <= hi.y(); ++y) {
         for (int z = lo.z(); z <= hi.z(); ++z) cells.insert(CellKey(Eigen::Vector3i(x, y, z)));
@@ -50,8 +52,8 @@ std::unordered_set<std::uint64_t> OccupiedCells(const io::TriangleMesh& mesh, do
 // Signed distance of every vertex (moved into the field's frame by X_FM) to the field's mesh;
 // vertices farther than `reach` (culled by the occupied cells first) hold kFarValue.
 std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X_FM,
-                                   const collision::NarrowBandSdf& field, const io::TriangleMesh& field_mesh,
-                                   double reach) {
+                                   const collision::NarrowBandSdf& field,
+                                   const io::TriangleMesh& field_mesh, double reach) {
   std::vector<float> out(mesh.num_vertices(), render::kFarValue);
   const double cell = reach * (1.0 + 1e-9);
   const std::unordered_set<std::uint64_t> occupied = OccupiedCells(field_mesh, cell);
@@ -66,7 +68,8 @@ std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Is
         const Eigen::Vector3i c = CellOf(p, cell);
         bool near = false;
         for (int d = 0; d < 27 && !near; ++d) {
-          near = occupied.count(CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1))) > 0;
+          near = occupied.count(
+                     CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1))) > 0;
         }
         if (near && field.Exact(p, reach, &s)) out[i] = static_cast<float>(s.distance);
       }
@@ -105,7 +108,9 @@ std::vector<ToothRow> ToothRows(const CaseJaws& jaws) {
     return a.upper != b.upper ? a.upper : a.tooth < b.tooth;
   });
   rows.erase(std::unique(rows.begin(), rows.end(),
-                         [](const ToothRow& a, const ToothRow& b) { return a.tooth == b.tooth && a.upper == b.upper; }),
+                         [](const ToothRow& a, const ToothRow& b) {
+                           return a.tooth == b.tooth && a.upper == b.upper;
+                         }),
              rows.end());
   return rows;
 }
@@ -118,7 +123,8 @@ ToothRow* FindRow(std::vector<ToothRow>* rows, int tooth, bool upper) {
 }
 
 // Spots and per-tooth totals from the oracle's contact and penetration samples.
-void Attribute(const CaseJaws& jaws, const collision::NarrowBandSdf& lower_field, ReportAnalysis* a) {
+void Attribute(const CaseJaws& jaws, const collision::NarrowBandSdf& lower_field,
+               ReportAnalysis* a) {
   const auto& contacts = a->oracle.contacts;
   std::vector<Eigen::Vector3d> points;
   std::vector<int> lower_tooth(contacts.size());
@@ -144,7 +150,9 @@ void Attribute(const CaseJaws& jaws, const collision::NarrowBandSdf& lower_field
     if (ToothRow* r = FindRow(&a->teeth, lower_tooth[i], false)) r->contact_area_mm2 += w;
   }
   const auto majority = [](const std::map<int, double>& votes) {
-    return std::max_element(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.second < y.second; })->first;
+    return std::max_element(votes.begin(), votes.end(),
+                            [](const auto& x, const auto& y) { return x.second < y.second; })
+        ->first;
   };
   for (std::size_t c = 0; c < spots.size(); ++c) {
     if (spots[c].area_mm2 > 0) spots[c].p_L /= spots[c].area_mm2;
@@ -156,8 +164,10 @@ void Attribute(const CaseJaws& jaws, const collision::NarrowBandSdf& lower_field
   a->spots = std::move(spots);
   for (const auto& p : a->oracle.penetrations) {
     const double depth = -p.distance_mm;
-    for (ToothRow* r : {FindRow(&a->teeth, ToothOfPart(*jaws.upper_U, p.part), true),
-                        FindRow(&a->teeth, LowerToothAt(lower_field, *jaws.lower_L, p.p_L, a->reach_mm), false)}) {
+    for (ToothRow* r :
+         {FindRow(&a->teeth, ToothOfPart(*jaws.upper_U, p.part), true),
+          FindRow(&a->teeth, LowerToothAt(lower_field, *jaws.lower_L, p.p_L, a->reach_mm),
+                  false)}) {
       if (r == nullptr) continue;
       r->penetration_area_mm2 += p.area_mm2;
       r->max_penetration_mm = std::max(r->max_penetration_mm, depth);
@@ -172,13 +182,15 @@ std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, doubl
   for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
   const auto find = [&](int x) {
     while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+      parent[static_cast<std::size_t>(x)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
       x = parent[static_cast<std::size_t>(x)];
     }
     return x;
   };
   const auto key = [](long x, long y, long z) {
-    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) | (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
+    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) |
+           (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
            static_cast<std::uint64_t>(z & 0x1fffff);
   };
   std::unordered_map<std::uint64_t, std::vector<int>> cells;
@@ -191,7 +203,8 @@ std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, doubl
     for (int dx = -1; dx <= 1; ++dx) {
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells.find(key(cell_of[i].x() + dx, cell_of[i].y() + dy, cell_of[i].z() + dz));
+          const auto it =
+              cells.find(key(cell_of[i].x() + dx, cell_of[i].y() + dy, cell_of[i].z() + dz));
           if (it == cells.end()) continue;
           for (const int j : it->second) {
             if ((points[i] - points[static_cast<std::size_t>(j)]).norm() < link_mm) {
@@ -233,8 +246,9 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   t0 = NowSeconds();
   collision::OracleRequest request;
   // The level chosen for the accuracy, but never the voxel level for a report.
-  request.level = config.OracleLevel() == collision::AccuracyLevel::kExact ? collision::AccuracyLevel::kExact
-                                                                           : collision::AccuracyLevel::kSubVoxel;
+  request.level = config.OracleLevel() == collision::AccuracyLevel::kExact
+                      ? collision::AccuracyLevel::kExact
+                      : collision::AccuracyLevel::kSubVoxel;
   request.contact_band_mm = config.contact_band_mm;
   request.penetration_search_mm = a.reach_mm;
   request.pivot_L = a.pivot_L;
@@ -243,7 +257,8 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
 
   t0 = NowSeconds();
   a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower, *jaws.lower_L, a.reach_mm);
-  a.lower_vertex_mm = VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper, *jaws.upper_U, a.reach_mm);
+  a.lower_vertex_mm =
+      VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper, *jaws.upper_U, a.reach_mm);
   Attribute(jaws, maps.lower, &a);
   a.timings_s.emplace_back("map distances", NowSeconds() - t0);
   return a;

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "case_config.h"
+#include "case_session.h"
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/oracle.h"
-#include "case_session.h"
 #include "report_case.h"
 
 namespace occlude::app {
@@ -41,24 +41,25 @@ struct ToothRow {
 
 struct ReportAnalysis {
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot at X_LU (centre of the upper occlusal surface)
+  Eigen::Vector3d pivot_L =
+      Eigen::Vector3d::Zero();     ///< pivot at X_LU (centre of the upper occlusal surface)
   planner::PoseParameters params;  ///< X_LU about the pivot relative to the jaws as given
   collision::ArchFrame arch;
   collision::OracleResult oracle;
   double voxel_mm = 0.0;
   std::vector<ContactSpot> spots;
-  std::vector<ToothRow> teeth;  ///< every tooth of both arches, upper first, by number
+  std::vector<ToothRow> teeth;         ///< every tooth of both arches, upper first, by number
   std::vector<float> lower_vertex_mm;  ///< per lower vertex: signed distance to the upper at X_LU
   std::vector<float> upper_vertex_mm;  ///< per upper vertex: signed distance to the lower
   double reach_mm = 1.0;
   std::vector<std::pair<std::string, double>> timings_s;  ///< step -> wall seconds
-  std::vector<OracleModel> models;  ///< the session's oracles (region of interest, bytes, build time)
+  std::vector<OracleModel>
+      models;  ///< the session's oracles (region of interest, bytes, build time)
 };
 
 /// Evaluates the pose on the session's finest oracle and map fields (built on first use:
 /// throws UserError when the voxel size does not fit the jaws).
 ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU);
-
 
 /// Groups points closer than `link_mm` (single linkage); returns a cluster id per point.
 std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, double link_mm);

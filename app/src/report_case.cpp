@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <iostream>
 
-#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "synthetic_case.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -57,13 +57,15 @@ collision::ArchFrame CaseArchFrame(const CaseConfig& config, const io::TriangleM
   return f;
 }
 
-Eigen::Vector3d UpperOcclusalCentre(const io::TriangleMesh& upper_U, const Eigen::Vector3d& occlusal_U) {
+Eigen::Vector3d UpperOcclusalCentre(const io::TriangleMesh& upper_U,
+                                    const Eigen::Vector3d& occlusal_U) {
   if (upper_U.vertices.empty()) return Eigen::Vector3d::Zero();
   std::vector<double> heights;
   heights.reserve(upper_U.vertices.size());
   for (const auto& v : upper_U.vertices) heights.push_back(v.dot(occlusal_U));
   const std::size_t k = heights.size() / 20;
-  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k), heights.end());
+  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k),
+                   heights.end());
   const double level = heights[k];
   const Eigen::AlignedBox3d box = upper_U.Bounds();
   const Eigen::Vector3d c = box.center();

@@ -12,8 +12,11 @@ struct Stop {
 };
 // Red at contact, orange at 0.2 of the scale (the 0.1 mm band on the default 0.5 mm
 // scale), yellow, green, blue at the end. Hues stay in 0..225 degrees, far from magenta.
-constexpr Stop kStops[] = {{0.0, {205, 0, 0}},   {0.2, {255, 120, 0}}, {0.4, {250, 215, 0}},
-                           {0.6, {40, 180, 40}}, {1.0, {30, 90, 230}}};
+constexpr Stop kStops[] = {{0.0, {205, 0, 0}},
+                           {0.2, {255, 120, 0}},
+                           {0.4, {250, 215, 0}},
+                           {0.6, {40, 180, 40}},
+                           {1.0, {30, 90, 230}}};
 
 }  // namespace
 
@@ -26,7 +29,8 @@ Rgb DistanceColour(double d, const MapScale& scale) {
       const double f = (t - kStops[i - 1].t) / (kStops[i].t - kStops[i - 1].t);
       Rgb out;
       for (std::size_t k = 0; k < 3; ++k) {
-        out[k] = static_cast<std::uint8_t>(std::lround((1 - f) * kStops[i - 1].c[k] + f * kStops[i].c[k]));
+        out[k] = static_cast<std::uint8_t>(
+            std::lround((1 - f) * kStops[i - 1].c[k] + f * kStops[i].c[k]));
       }
       return out;
     }

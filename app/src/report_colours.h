@@ -12,9 +12,9 @@
 namespace occlude::app::render {
 
 struct MapScale {
-  double max_mm = 0.5;               ///< colour ramp 0..max_mm
-  double band_mm = 0.1;              ///< contact band (0 <= d <= band), marked on the legend
-  double penetration_from_mm = 0.01; ///< d < -this is drawn as penetration
+  double max_mm = 0.5;                ///< colour ramp 0..max_mm
+  double band_mm = 0.1;               ///< contact band (0 <= d <= band), marked on the legend
+  double penetration_from_mm = 0.01;  ///< d < -this is drawn as penetration
 };
 
 inline constexpr Rgb kPenetrationColour = {200, 0, 200};

@@ -40,15 +40,18 @@ render::Image FromMat(const cv::Mat& m) {
 
 void Text(cv::Mat* m, const std::string& s, cv::Point at, double scale, const cv::Scalar& colour,
           int thickness = 1, bool halo = false) {
-  if (halo) cv::putText(*m, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kWhite, thickness + 3, cv::LINE_AA);
+  if (halo)
+    cv::putText(*m, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kWhite, thickness + 3, cv::LINE_AA);
   cv::putText(*m, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, thickness, cv::LINE_AA);
 }
 
-void CentredText(cv::Mat* m, const std::string& s, cv::Point2d centre, double scale, const cv::Scalar& colour,
-                 int thickness, bool halo) {
+void CentredText(cv::Mat* m, const std::string& s, cv::Point2d centre, double scale,
+                 const cv::Scalar& colour, int thickness, bool halo) {
   int base = 0;
   const cv::Size size = cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &base);
-  Text(m, s, cv::Point(static_cast<int>(centre.x) - size.width / 2, static_cast<int>(centre.y) + size.height / 2),
+  Text(m, s,
+       cv::Point(static_cast<int>(centre.x) - size.width / 2,
+                 static_cast<int>(centre.y) + size.height / 2),
        scale, colour, thickness, halo);
 }
 
@@ -61,14 +64,16 @@ std::string Mm(double v, int decimals = 2) {
 }
 
 // Every k-th vertex of a mesh at a pose (for framing a view).
-void AddPoints(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X, std::vector<Eigen::Vector3d>* out) {
+void AddPoints(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X,
+               std::vector<Eigen::Vector3d>* out) {
   const std::size_t step = std::max<std::size_t>(1, mesh.num_vertices() / 20000);
   for (std::size_t i = 0; i < mesh.num_vertices(); i += step) out->push_back(X * mesh.vertices[i]);
 }
 
 // A view of `width` pixels framing the points, as tall as their aspect needs.
 render::OrthoView FitToWidth(const Eigen::Vector3d& view, const Eigen::Vector3d& up,
-                             const std::vector<Eigen::Vector3d>& pts, int width, int min_h, int max_h) {
+                             const std::vector<Eigen::Vector3d>& pts, int width, int min_h,
+                             int max_h) {
   render::OrthoView v = render::FitView(view, up, pts, width, 100000, kMargin);
   double lo = 1e300, hi = -1e300;
   for (const auto& p : pts) {
@@ -82,7 +87,8 @@ render::OrthoView FitToWidth(const Eigen::Vector3d& view, const Eigen::Vector3d&
 render::Image Draw(const render::OrthoView& view, const std::vector<render::Surface>& surfaces,
                    const std::function<render::Rgb(int, float)>& colour) {
   render::OrthoView ss = view.Scaled(kSupersample);
-  return render::Resolve(render::Rasterize(ss, surfaces), colour, render::kBackground, kSupersample);
+  return render::Resolve(render::Rasterize(ss, surfaces), colour, render::kBackground,
+                         kSupersample);
 }
 
 double ScaleBarMm(double px_per_mm) {
@@ -112,7 +118,8 @@ int Legend(cv::Mat* m, int x, int y, const render::MapScale& s, std::size_t spot
   Text(m, "Distance to the", {x, y}, 0.55, kBlack, 1);
   Text(m, "opposing arch (mm)", {x, y + 22}, 0.55, kBlack, 1);
   y += 44;
-  Swatch(m, {x, y}, render::kPenetrationColour, "penetration > " + Mm(s.penetration_from_mm) + " mm");
+  Swatch(m, {x, y}, render::kPenetrationColour,
+         "penetration > " + Mm(s.penetration_from_mm) + " mm");
   y += 34;
   const int bar_h = 280, bar_w = 32;
   for (int r = 0; r < bar_h; ++r) {
@@ -126,7 +133,8 @@ int Legend(cv::Mat* m, int x, int y, const render::MapScale& s, std::size_t spot
     cv::line(*m, {x + bar_w, yy}, {x + bar_w + 6, yy}, kBlack, 1);
     Text(m, Mm(d, step < 0.25 ? 1 : 2), {x + bar_w + 10, yy + 5}, 0.48, kBlack);
   }
-  const int band_y = y + static_cast<int>(std::lround(std::min(1.0, s.band_mm / s.max_mm) * (bar_h - 1)));
+  const int band_y =
+      y + static_cast<int>(std::lround(std::min(1.0, s.band_mm / s.max_mm) * (bar_h - 1)));
   const int bx = x + bar_w + 62;
   cv::line(*m, {bx, y}, {bx, band_y}, kBlack, 2);
   cv::line(*m, {bx - 5, y}, {bx, y}, kBlack, 2);
@@ -142,7 +150,8 @@ int Legend(cv::Mat* m, int x, int y, const render::MapScale& s, std::size_t spot
 }
 
 // Centroid in L of each tooth part's vertices, with its number.
-std::vector<std::pair<int, Eigen::Vector3d>> ToothCentroids(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X) {
+std::vector<std::pair<int, Eigen::Vector3d>> ToothCentroids(const io::TriangleMesh& mesh,
+                                                            const Eigen::Isometry3d& X) {
   std::vector<Eigen::Vector3d> sum(mesh.parts.size(), Eigen::Vector3d::Zero());
   std::vector<double> count(mesh.parts.size(), 0.0);
   for (std::size_t t = 0; t < mesh.num_triangles() && !mesh.triangle_part.empty(); ++t) {
@@ -158,7 +167,8 @@ std::vector<std::pair<int, Eigen::Vector3d>> ToothCentroids(const io::TriangleMe
   return out;
 }
 
-void SideLabels(cv::Mat* m, const render::OrthoView& v, const collision::ArchFrame& arch, int x0, int y0, int w, int h) {
+void SideLabels(cv::Mat* m, const render::OrthoView& v, const collision::ArchFrame& arch, int x0,
+                int y0, int w, int h) {
   const bool right_is_left = v.right_L.dot(arch.lateral_L) > 0;
   CentredText(m, right_is_left ? "R" : "L", {x0 + 14.0, y0 + h / 2.0}, 0.9, kGrey, 2, false);
   CentredText(m, right_is_left ? "L" : "R", {x0 + w - 14.0, y0 + h / 2.0}, 0.9, kGrey, 2, false);
@@ -166,8 +176,8 @@ void SideLabels(cv::Mat* m, const render::OrthoView& v, const collision::ArchFra
 
 }  // namespace
 
-MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis& a, const render::MapScale& scale,
-                          int width_px) {
+MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis& a,
+                          const render::MapScale& scale, int width_px) {
   const bool upper = arch == Arch::kUpper;
   const io::TriangleMesh& mesh = upper ? *jaws.upper_U : *jaws.lower_L;
   const Eigen::Isometry3d X = upper ? a.X_LU : Eigen::Isometry3d::Identity();
@@ -178,8 +188,9 @@ MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis&
   const Eigen::Vector3d view = upper ? a.arch.occlusal_L : Eigen::Vector3d(-a.arch.occlusal_L);
   MapImage out;
   out.view = FitToWidth(view, a.arch.anterior_L, pts, map_w, 420, 1600);
-  const render::Image map = Draw(out.view, {{&mesh, X, upper ? &a.upper_vertex_mm : &a.lower_vertex_mm, 0}},
-                                 [&](int, float d) { return render::DistanceColour(d, scale); });
+  const render::Image map =
+      Draw(out.view, {{&mesh, X, upper ? &a.upper_vertex_mm : &a.lower_vertex_mm, 0}},
+           [&](int, float d) { return render::DistanceColour(d, scale); });
   const int height = kTitleHeight + std::max(map.height, 560);
   cv::Mat canvas(height, width_px, CV_8UC3, kWhite);
   ToMat(map).copyTo(canvas(cv::Rect(0, kTitleHeight, map.width, map.height)));
@@ -189,23 +200,28 @@ MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis&
   out.map_width = map.width;
   out.map_height = map.height;
 
-  Text(&canvas, upper ? "Upper arch from below: distance to the lower arch" : "Lower arch from above: distance to the upper arch",
+  Text(&canvas,
+       upper ? "Upper arch from below: distance to the lower arch"
+             : "Lower arch from above: distance to the upper arch",
        {14, 30}, 0.72, kBlack, 2);
   CentredText(&canvas, "anterior", {map_w / 2.0, kTitleHeight + 14.0}, 0.55, kGrey, 1, false);
   SideLabels(&canvas, out.view, a.arch, 0, kTitleHeight, map_w, map.height);
   for (const auto& spot : a.spots) {
     const Eigen::Vector2d px = out.view.ToPixel(spot.p_L);
-    cv::circle(canvas, cv::Point(static_cast<int>(px.x()), static_cast<int>(px.y())), 10, kBlack, 1, cv::LINE_AA);
+    cv::circle(canvas, cv::Point(static_cast<int>(px.x()), static_cast<int>(px.y())), 10, kBlack, 1,
+               cv::LINE_AA);
   }
   // Tooth numbers beside the crowns, on the buccal/labial side (radially out from
   // the arch's centre), so they never cover the occlusal surface.
   const auto teeth = ToothCentroids(mesh, X);
   Eigen::Vector2d arch_centre = Eigen::Vector2d::Zero();
-  for (const auto& t : teeth) arch_centre += out.view.ToPixel(t.second) / static_cast<double>(teeth.size());
+  for (const auto& t : teeth)
+    arch_centre += out.view.ToPixel(t.second) / static_cast<double>(teeth.size());
   for (const auto& [tooth, c] : teeth) {
     const Eigen::Vector2d px = out.view.ToPixel(c);
-    const Eigen::Vector2d dir = (px - arch_centre).norm() > 1 ? Eigen::Vector2d((px - arch_centre).normalized())
-                                                              : Eigen::Vector2d(0, -1);
+    const Eigen::Vector2d dir = (px - arch_centre).norm() > 1
+                                    ? Eigen::Vector2d((px - arch_centre).normalized())
+                                    : Eigen::Vector2d(0, -1);
     const Eigen::Vector2d at = px + dir * (kToothLabelOffsetMm * out.view.px_per_mm);
     CentredText(&canvas, std::to_string(tooth), {at.x(), at.y()}, 0.6, kBlack, 2, true);
   }
@@ -226,22 +242,27 @@ render::Image RenderSideView(SideView side, const CaseJaws& jaws, const ReportAn
   const render::OrthoView v = FitToWidth(view, a.arch.occlusal_L, pts, width_px, 240, 900);
   const auto colour = [&](int id, float value) {
     const double d = value;
-    if (d < -scale.penetration_from_mm || d <= scale.max_mm) return render::DistanceColour(d, scale);
+    if (d < -scale.penetration_from_mm || d <= scale.max_mm)
+      return render::DistanceColour(d, scale);
     return id == 1 ? kUpperTint : kLowerTint;
   };
-  const render::Image img = Draw(v, {{jaws.lower_L.get(), Eigen::Isometry3d::Identity(), &a.lower_vertex_mm, 0},
-                                     {jaws.upper_U.get(), a.X_LU, &a.upper_vertex_mm, 1}},
-                                 colour);
+  const render::Image img =
+      Draw(v,
+           {{jaws.lower_L.get(), Eigen::Isometry3d::Identity(), &a.lower_vertex_mm, 0},
+            {jaws.upper_U.get(), a.X_LU, &a.upper_vertex_mm, 1}},
+           colour);
   cv::Mat canvas(img.height + kTitleHeight + 40, width_px, CV_8UC3, kWhite);
   ToMat(img).copyTo(canvas(cv::Rect(0, kTitleHeight, img.width, img.height)));
-  Text(&canvas, frontal ? "Frontal view (from the front)" : "Right lateral view (anterior to the right)", {14, 30}, 0.72,
-       kBlack, 2);
+  Text(&canvas,
+       frontal ? "Frontal view (from the front)" : "Right lateral view (anterior to the right)",
+       {14, 30}, 0.72, kBlack, 2);
   if (frontal) SideLabels(&canvas, v, a.arch, 0, kTitleHeight, width_px, img.height);
   const int by = kTitleHeight + img.height + 22;
   Swatch(&canvas, {14, by - 12}, kUpperTint, "upper jaw");
   Swatch(&canvas, {170, by - 12}, kLowerTint, "lower jaw");
   Text(&canvas, "near-contact surfaces in the map colours", {330, by + 2}, 0.48, kGrey);
-  ScaleBar(&canvas, {width_px - 80 - static_cast<int>(ScaleBarMm(v.px_per_mm) * v.px_per_mm), by}, v.px_per_mm);
+  ScaleBar(&canvas, {width_px - 80 - static_cast<int>(ScaleBarMm(v.px_per_mm) * v.px_per_mm), by},
+           v.px_per_mm);
   return FromMat(canvas);
 }
 

@@ -7,10 +7,10 @@
 
 #include <string>
 
+#include "render_raster.h"
 #include "report_analysis.h"
 #include "report_case.h"
 #include "report_colours.h"
-#include "render_raster.h"
 
 namespace occlude::app {
 

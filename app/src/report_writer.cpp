@@ -3,21 +3,23 @@
 
 #include <thread>
 
-#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "output_files.h"
 #include "report_document.h"
 #include "report_images.h"
 #include "timing.h"
+#include "user_error.h"
 
 namespace occlude::app {
 
-ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis, const std::string& pose_source,
-                            const std::string& search_json, const std::string& search_html) {
+ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
+                            const std::string& pose_source, const std::string& search_json,
+                            const std::string& search_html) {
   const CaseConfig& config = session.config();
   const CaseJaws& jaws = session.jaws();
   const double t0 = NowSeconds();
-  const render::MapScale scale{config.report.map_max_mm, config.contact_band_mm, config.report.map_penetration_from_mm};
+  const render::MapScale scale{config.report.map_max_mm, config.contact_band_mm,
+                               config.report.map_penetration_from_mm};
   const int w = config.report.image_width_px;
   std::string png[4];
   {

@@ -21,8 +21,9 @@ struct ReportFiles {
 
 /// Renders the pictures and serializes the documents. `search_json` / `search_html`: see
 /// ReportInputs (empty for a plain report).
-ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis, const std::string& pose_source,
-                            const std::string& search_json = "", const std::string& search_html = "");
+ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
+                            const std::string& pose_source, const std::string& search_json = "",
+                            const std::string& search_html = "");
 
 /// Writes the files (and `extra` ones first) into `out`, each atomically.
 void WriteReportFiles(const std::filesystem::path& out, const ReportFiles& files,

@@ -19,7 +19,8 @@ collision::AccuracyLevel LevelNamed(const std::string& name, const std::string& 
   if (name == "voxel") return collision::AccuracyLevel::kVoxel;
   if (name == "subvoxel") return collision::AccuracyLevel::kSubVoxel;
   if (name == "exact") return collision::AccuracyLevel::kExact;
-  throw UserError(source + ": unknown oracle level \"" + name + "\" (expected voxel, subvoxel or exact)");
+  throw UserError(source + ": unknown oracle level \"" + name +
+                  "\" (expected voxel, subvoxel or exact)");
 }
 
 std::string Num(double v) {
@@ -47,19 +48,23 @@ ResolutionTable ParseResolutionTable(const std::string& json_text, const std::st
       o.p95_err_mm = row.at("p95_err_mm").get<double>();
       o.max_err_mm = row.at("max_err_mm").get<double>();
       o.missed_half_band = row.value("missed_half_band", 0L);
-      if (!(o.voxel_mm > 0.0) || !std::isfinite(o.median_us) || !std::isfinite(o.p95_err_mm)) continue;
+      if (!(o.voxel_mm > 0.0) || !std::isfinite(o.median_us) || !std::isfinite(o.p95_err_mm))
+        continue;
       table.options.push_back(o);
     }
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(source + ": not an accuracy table of `occlude bench --accuracy` (" + std::string(e.what()) +
-                    "); give the accuracy-table.json it wrote");
+    throw UserError(source + ": not an accuracy table of `occlude bench --accuracy` (" +
+                    std::string(e.what()) + "); give the accuracy-table.json it wrote");
   }
   if (table.options.empty()) {
-    throw UserError(source + ": the accuracy table has no IST oracle rows; give the accuracy-table.json of "
-                             "`occlude bench --accuracy`");
+    throw UserError(source +
+                    ": the accuracy table has no IST oracle rows; give the accuracy-table.json of "
+                    "`occlude bench --accuracy`");
   }
   std::stable_sort(table.options.begin(), table.options.end(),
-                   [](const ResolutionOption& a, const ResolutionOption& b) { return a.median_us < b.median_us; });
+                   [](const ResolutionOption& a, const ResolutionOption& b) {
+                     return a.median_us < b.median_us;
+                   });
   return table;
 }
 
@@ -117,13 +122,15 @@ ResolutionChoice ExplicitResolution(double voxel_mm, const ResolutionTable& tabl
 
 std::string ResolutionChoice::Describe() const {
   std::string s = explicit_voxel ? "voxel " + Num(chosen.voxel_mm) + " mm (accuracy.voxel_mm)"
-                                 : "accuracy " + Num(accuracy_mm) + " mm: voxel " + Num(chosen.voxel_mm) + " mm";
+                                 : "accuracy " + Num(accuracy_mm) + " mm: voxel " +
+                                       Num(chosen.voxel_mm) + " mm";
   s += std::string(" at ") + collision::ToString(chosen.level) + " level";
   if (measured) {
-    s += " (measured 95th percentile error " + Num(chosen.p95_err_mm) + " mm, " + Num(chosen.median_us / 1000.0) +
-         " ms per query, in " + source + ")";
+    s += " (measured 95th percentile error " + Num(chosen.p95_err_mm) + " mm, " +
+         Num(chosen.median_us / 1000.0) + " ms per query, in " + source + ")";
   }
-  if (!met) s += "; no measured setting reaches " + Num(accuracy_mm) + " mm: this is the most accurate one";
+  if (!met)
+    s += "; no measured setting reaches " + Num(accuracy_mm) + " mm: this is the most accurate one";
   return s;
 }
 

@@ -48,10 +48,10 @@ const ResolutionTable& DefaultResolutionTable();
 struct ResolutionChoice {
   double accuracy_mm = 0.0;  ///< wanted (0 when the voxel size was set explicitly)
   bool explicit_voxel = false;
-  bool met = true;  ///< a row met the wanted accuracy
-  ResolutionOption chosen;   ///< voxel size and level in use; errors as measured (or 0 if unknown)
-  bool measured = true;      ///< `chosen` has measured errors (false: explicit voxel not in the table)
-  std::string source;        ///< the table's source
+  bool met = true;          ///< a row met the wanted accuracy
+  ResolutionOption chosen;  ///< voxel size and level in use; errors as measured (or 0 if unknown)
+  bool measured = true;  ///< `chosen` has measured errors (false: explicit voxel not in the table)
+  std::string source;    ///< the table's source
   /// One line for the user: "accuracy 0.02 mm: voxel 0.2 mm at sub-voxel level (measured
   /// 95th percentile error 0.012 mm, 2.3 ms per query on a-bite-3shape)".
   std::string Describe() const;

@@ -13,7 +13,7 @@
 namespace occlude::app {
 
 struct SearchSummary {
-  std::string command;      ///< "propose" or "refine"
+  std::string command;       ///< "propose" or "refine"
   std::string start_source;  ///< where the search started
   const planner::PlanResult* result = nullptr;
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot at the pose as given (U = L)

@@ -14,7 +14,8 @@
 namespace occlude::app {
 
 struct SweepOptions {
-  std::vector<double> offsets_mm = {5.0, 2.0, 1.0, 0.5, 0.3, 0.2, 0.1, 0.05, 0.0, -0.05, -0.1, -0.2};
+  std::vector<double> offsets_mm = {5.0, 2.0,  1.0, 0.5,   0.3,  0.2,
+                                    0.1, 0.05, 0.0, -0.05, -0.1, -0.2};
   Eigen::Vector3d axis_L = Eigen::Vector3d::UnitY();  ///< unit, lower -> upper
   double delta_mm = 0.1;
   int reps = 30;
@@ -34,8 +35,8 @@ struct SweepRow {
 };
 
 /// Runs the sweep; A = lower (frame L), B = upper (frame U); X_LU_ref is the bite.
-std::vector<SweepRow> RunSweep(const collision::CollisionPair& pair, const Eigen::Isometry3d& X_LU_ref,
-                               const SweepOptions& options);
+std::vector<SweepRow> RunSweep(const collision::CollisionPair& pair,
+                               const Eigen::Isometry3d& X_LU_ref, const SweepOptions& options);
 /// A fixed-width table (header included), one line per row.
 std::string SweepTable(const std::vector<SweepRow>& rows);
 /// A JSON array, one object per row.

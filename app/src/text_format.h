@@ -16,7 +16,9 @@ inline std::string Fixed(double v, int digits) {
 }
 
 /// Fixed(v, digits), or "" when v is not finite (an empty CSV cell).
-inline std::string FixedOrEmpty(double v, int digits) { return std::isfinite(v) ? Fixed(v, digits) : ""; }
+inline std::string FixedOrEmpty(double v, int digits) {
+  return std::isfinite(v) ? Fixed(v, digits) : "";
+}
 
 /// The shortest form (printf "%g"): 0.2, 1e-05, 100.
 inline std::string ShortNumber(double v) {

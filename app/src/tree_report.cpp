@@ -36,7 +36,8 @@ std::string DescribeTree(const std::string& name, const collision::SphereTree& t
 std::string TreeJson(const collision::SphereTree& tree) {
   const auto& st = tree.stats();
   std::ostringstream s;
-  s << "{\"triangles\": " << tree.mesh().num_triangles() << ", \"voxel_mm\": " << tree.voxel_size_mm()
+  s << "{\"triangles\": " << tree.mesh().num_triangles()
+    << ", \"voxel_mm\": " << tree.voxel_size_mm()
     << ", \"surface_voxels\": " << st.voxelize.surface_voxels
     << ", \"proximity_voxels\": " << st.voxelize.proximity_voxels
     << ", \"interior_voxels\": " << st.voxelize.interior_voxels << ", \"nodes\": " << st.nodes

@@ -31,23 +31,25 @@ Eigen::Vector3d InBall(std::mt19937& rng, double radius) {
   return radius * std::cbrt(u(rng)) * d.normalized();
 }
 
-
 // The medoid of `runs` (largest displacement of the reference points as the distance).
-std::size_t Medoid(const std::vector<const ValidateRun*>& runs, const std::vector<Eigen::Vector3d>& points_U) {
+std::size_t Medoid(const std::vector<const ValidateRun*>& runs,
+                   const std::vector<Eigen::Vector3d>& points_U) {
   std::size_t medoid = 0;
   double best_sum = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     double sum = 0.0;
-    for (const ValidateRun* other : runs) sum += planner::ComparePoses(runs[i]->X_LU, other->X_LU, points_U).translation_mm;
+    for (const ValidateRun* other : runs)
+      sum += planner::ComparePoses(runs[i]->X_LU, other->X_LU, points_U).translation_mm;
     if (sum < best_sum) best_sum = sum, medoid = i;
   }
   return medoid;
 }
 
-ReferenceCheck CheckReference(const std::vector<ValidateRun>& runs, const planner::OracleStage& stage,
-                              const Eigen::Isometry3d& X_ref, const Eigen::Vector3d& pivot_L,
-                              const std::vector<Eigen::Vector3d>& points_U, const planner::PlanRequest& request,
-                              const ValidateOptions& options) {
+ReferenceCheck CheckReference(const std::vector<ValidateRun>& runs,
+                              const planner::OracleStage& stage, const Eigen::Isometry3d& X_ref,
+                              const Eigen::Vector3d& pivot_L,
+                              const std::vector<Eigen::Vector3d>& points_U,
+                              const planner::PlanRequest& request, const ValidateOptions& options) {
   ReferenceCheck check;
   if (runs.empty()) return check;
   std::vector<const ValidateRun*> all;
@@ -55,17 +57,20 @@ ReferenceCheck CheckReference(const std::vector<ValidateRun>& runs, const planne
   check.X_LU_consensus = all[Medoid(all, points_U)]->X_LU;
   check.consensus_error = planner::ComparePoses(check.X_LU_consensus, X_ref, points_U);
   check.path = planner::EvaluatePath(stage, X_ref, check.X_LU_consensus, pivot_L, points_U, request,
-                                    std::max(1, options.path_steps));
+                                     std::max(1, options.path_steps));
   const planner::PoseEvaluation& reference = check.path.front().evaluation;
   for (std::size_t k = 1; k < check.path.size(); ++k) {
     const planner::PoseEvaluation& e = check.path[k].evaluation;
     if (!planner::Dominates(e, reference)) continue;
     const planner::PoseError& d = check.path[k].from_start;
-    const bool beyond_bar = d.translation_mm > options.success_mm || d.rotation_deg > options.success_deg;
+    const bool beyond_bar =
+        d.translation_mm > options.success_mm || d.rotation_deg > options.success_deg;
     if (check.nearest_dominating < 0) check.nearest_dominating = static_cast<int>(k);
-    if (beyond_bar && check.nearest_dominating_beyond_bar < 0) check.nearest_dominating_beyond_bar = static_cast<int>(k);
+    if (beyond_bar && check.nearest_dominating_beyond_bar < 0)
+      check.nearest_dominating_beyond_bar = static_cast<int>(k);
     if (check.most_contact_dominating < 0 ||
-        e.contact_area_mm2 > check.path[static_cast<std::size_t>(check.most_contact_dominating)].evaluation.contact_area_mm2) {
+        e.contact_area_mm2 > check.path[static_cast<std::size_t>(check.most_contact_dominating)]
+                                 .evaluation.contact_area_mm2) {
       check.most_contact_dominating = static_cast<int>(k);
     }
   }
@@ -113,7 +118,8 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
   result.build_seconds = NowSeconds() - t0;
   const planner::OracleStage& last = schedule.stages.back();
   const Eigen::Isometry3d& X_ref = jaws.X_LU_ref;
-  const std::vector<Eigen::Vector3d> points_U = planner::ArchReferencePoints_U(*jaws.upper_U, X_ref, last.oracle->arch());
+  const std::vector<Eigen::Vector3d> points_U =
+      planner::ArchReferencePoints_U(*jaws.upper_U, X_ref, last.oracle->arch());
   const Eigen::Vector3d pivot_L = X_ref * points_U[0];
 
   planner::PlanRequest base;
@@ -129,7 +135,8 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
   std::vector<std::vector<PoseParameters>> perturb(options.magnitudes.size());
   for (std::size_t m = 0; m < options.magnitudes.size(); ++m) {
     for (int k = 0; k < options.starts; ++k) {
-      std::mt19937 rng(options.seed * 1000003u + static_cast<std::uint32_t>(m) * 7919u + static_cast<std::uint32_t>(k));
+      std::mt19937 rng(options.seed * 1000003u + static_cast<std::uint32_t>(m) * 7919u +
+                       static_cast<std::uint32_t>(k));
       PoseParameters p;
       p.translation_mm = InBall(rng, options.magnitudes[m].mm);
       p.rotation_deg = InBall(rng, options.magnitudes[m].deg);
@@ -151,14 +158,19 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       const Magnitude& mag = options.magnitudes[job.magnitude];
       planner::PlanRequest req = base;
       req.solver = job.solver;
-      req.X_LU_start = planner::ComposePose(perturb[job.magnitude][static_cast<std::size_t>(job.start)], pivot_L, X_ref);
-      req.lower_bound.translation_mm = Eigen::Vector3d::Constant(-(mag.mm + options.bound_margin_mm));
+      req.X_LU_start = planner::ComposePose(
+          perturb[job.magnitude][static_cast<std::size_t>(job.start)], pivot_L, X_ref);
+      req.lower_bound.translation_mm =
+          Eigen::Vector3d::Constant(-(mag.mm + options.bound_margin_mm));
       req.upper_bound.translation_mm = Eigen::Vector3d::Constant(mag.mm + options.bound_margin_mm);
-      req.lower_bound.rotation_deg = Eigen::Vector3d::Constant(-(mag.deg + options.bound_margin_deg));
+      req.lower_bound.rotation_deg =
+          Eigen::Vector3d::Constant(-(mag.deg + options.bound_margin_deg));
       req.upper_bound.rotation_deg = Eigen::Vector3d::Constant(mag.deg + options.bound_margin_deg);
-      const bool multi = job.solver == SolverKind::kCoarseToFine || job.solver == SolverKind::kNloptGlobal;
+      const bool multi =
+          job.solver == SolverKind::kCoarseToFine || job.solver == SolverKind::kNloptGlobal;
       req.num_starts = multi ? options.solver_starts : 1;
-      req.seed = options.seed + static_cast<std::uint32_t>(job.magnitude) * 1009u + static_cast<std::uint32_t>(job.start);
+      req.seed = options.seed + static_cast<std::uint32_t>(job.magnitude) * 1009u +
+                 static_cast<std::uint32_t>(job.start);
       const double c0 = ThreadCpuSeconds();
       const planner::PlanResult plan = planner::Plan(schedule.stages, req);
       ValidateRun run;
@@ -178,7 +190,8 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       run.outliers = best.evaluation.outliers.size();
       run.status = planner::ToString(best.status);
       run.evaluations = plan.total_evaluations;
-      run.success = run.error.translation_mm <= options.success_mm && run.error.rotation_deg <= options.success_deg;
+      run.success = run.error.translation_mm <= options.success_mm &&
+                    run.error.rotation_deg <= options.success_deg;
       result.runs[j] = run;
       const std::size_t n = ++done;
       if (options.log && (n % 10 == 0 || n == jobs.size())) {
@@ -187,7 +200,8 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       }
     }
   };
-  const int threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
@@ -198,12 +212,14 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
     for (std::size_t m = 0; m < options.magnitudes.size(); ++m) {
       std::vector<ValidateRun*> group;
       for (auto& r : result.runs) {
-        if (r.solver == s && r.magnitude.mm == options.magnitudes[m].mm && r.magnitude.deg == options.magnitudes[m].deg) {
+        if (r.solver == s && r.magnitude.mm == options.magnitudes[m].mm &&
+            r.magnitude.deg == options.magnitudes[m].deg) {
           group.push_back(&r);
         }
       }
       if (group.empty()) continue;
-      const std::size_t medoid = Medoid(std::vector<const ValidateRun*>(group.begin(), group.end()), points_U);
+      const std::size_t medoid =
+          Medoid(std::vector<const ValidateRun*>(group.begin(), group.end()), points_U);
       ValidateSummary row;
       row.solver = s;
       row.magnitude = options.magnitudes[m];
@@ -214,13 +230,16 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
         const PoseError c = planner::ComparePoses(r->X_LU, group[medoid]->X_LU, points_U);
         r->consensus_mm = c.translation_mm;
         cons.push_back(c.translation_mm);
-        near += c.translation_mm <= options.success_mm && c.rotation_deg <= options.success_deg ? 1 : 0;
+        near +=
+            c.translation_mm <= options.success_mm && c.rotation_deg <= options.success_deg ? 1 : 0;
         em.push_back(r->error.translation_mm);
         ed.push_back(r->error.rotation_deg);
         sec.push_back(r->seconds);
         ok += r->success ? 1 : 0;
-        row.worst_penetration_mm = std::max(row.worst_penetration_mm, r->constrained_penetration_mm);
-        row.worst_max_penetration_mm = std::max(row.worst_max_penetration_mm, r->max_penetration_mm);
+        row.worst_penetration_mm =
+            std::max(row.worst_penetration_mm, r->constrained_penetration_mm);
+        row.worst_max_penetration_mm =
+            std::max(row.worst_max_penetration_mm, r->max_penetration_mm);
       }
       const double n = static_cast<double>(group.size());
       row.success_rate = ok / n;
@@ -236,7 +255,8 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       result.summary.push_back(row);
     }
   }
-  result.reference_check = CheckReference(result.runs, last, X_ref, pivot_L, points_U, base, options);
+  result.reference_check =
+      CheckReference(result.runs, last, X_ref, pivot_L, points_U, base, options);
   return result;
 }
 

@@ -35,24 +35,25 @@ struct Magnitude {
 std::vector<Magnitude> ParseMagnitudes(const std::string& text);
 
 struct ValidateOptions {
-  std::vector<planner::SolverKind> solvers = {planner::SolverKind::kCeres, planner::SolverKind::kCoarseToFine,
-                                              planner::SolverKind::kNloptLocal, planner::SolverKind::kNloptGlobal};
+  std::vector<planner::SolverKind> solvers = {
+      planner::SolverKind::kCeres, planner::SolverKind::kCoarseToFine,
+      planner::SolverKind::kNloptLocal, planner::SolverKind::kNloptGlobal};
   int starts = 20;  ///< perturbed starts per magnitude
   std::vector<Magnitude> magnitudes = {{1.0, 2.0}, {2.0, 3.0}, {5.0, 10.0}};
   std::uint32_t seed = 1;
   std::vector<double> voxels_mm = {0.8, 0.4};  ///< oracle schedule, coarse first
   bool exact_last = false;                     ///< add an exact-distance last stage
-  int threads = 0;         ///< runs in parallel (each single-threaded); 0 = all cores
-  int solver_starts = 4;   ///< internal starts of coarse-to-fine and nlopt-global
-  int global_samples = 16; ///< their global stage's sampled poses
+  int threads = 0;          ///< runs in parallel (each single-threaded); 0 = all cores
+  int solver_starts = 4;    ///< internal starts of coarse-to-fine and nlopt-global
+  int global_samples = 16;  ///< their global stage's sampled poses
   planner::NloptLocalMethod nlopt_local = planner::PlanRequest{}.nlopt_local;
   double contact_band_mm = 0.1;
   double max_penetration_mm = 0.05;
-  double bound_margin_mm = 1.5;   ///< search bounds: the magnitude plus these margins
+  double bound_margin_mm = 1.5;  ///< search bounds: the magnitude plus these margins
   double bound_margin_deg = 3.0;
   double success_mm = 0.3, success_deg = 1.0;
-  int path_steps = 20;            ///< poses on the reference check's path (ReferenceCheck)
-  std::ostream* log = nullptr;    ///< progress lines
+  int path_steps = 20;          ///< poses on the reference check's path (ReferenceCheck)
+  std::ostream* log = nullptr;  ///< progress lines
 };
 
 struct ValidateRun {
@@ -67,9 +68,9 @@ struct ValidateRun {
   std::size_t contact_samples = 0, outliers = 0;
   std::string status;
   int evaluations = 0;
-  double seconds = 0.0;           ///< thread CPU time of the run
+  double seconds = 0.0;  ///< thread CPU time of the run
   bool success = false;
-  double consensus_mm = 0.0;      ///< displacement from the medoid of its solver and magnitude
+  double consensus_mm = 0.0;  ///< displacement from the medoid of its solver and magnitude
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
 };
 
@@ -80,11 +81,11 @@ struct ValidateSummary {
   double success_rate = 0.0;
   double median_err_mm = 0.0, p95_err_mm = 0.0, median_err_deg = 0.0, p95_err_deg = 0.0;
   double median_seconds = 0.0;
-  double worst_penetration_mm = 0.0;   ///< largest constrained (outlier-robust) penetration
+  double worst_penetration_mm = 0.0;      ///< largest constrained (outlier-robust) penetration
   double worst_max_penetration_mm = 0.0;  ///< largest true maximum
-  planner::PoseError medoid_error;     ///< the consensus pose against the reference
-  double median_consensus_mm = 0.0;    ///< spread of the runs about the consensus
-  double within_consensus = 0.0;       ///< share of runs within success_mm / success_deg of it
+  planner::PoseError medoid_error;        ///< the consensus pose against the reference
+  double median_consensus_mm = 0.0;       ///< spread of the runs about the consensus
+  double within_consensus = 0.0;          ///< share of runs within success_mm / success_deg of it
   double medoid_contact_mm2 = 0.0;
 };
 
@@ -98,11 +99,13 @@ struct ValidateSummary {
 /// optimality.
 struct ReferenceCheck {
   Eigen::Isometry3d X_LU_consensus = Eigen::Isometry3d::Identity();
-  planner::PoseError consensus_error;      ///< the consensus against the reference
-  std::vector<planner::PathPoint> path;    ///< s = 0: the reference, s = 1: the consensus (last stage)
-  int nearest_dominating = -1;  ///< index in `path` of the first pose dominating the reference; -1: none
+  planner::PoseError consensus_error;  ///< the consensus against the reference
+  std::vector<planner::PathPoint>
+      path;  ///< s = 0: the reference, s = 1: the consensus (last stage)
+  int nearest_dominating =
+      -1;  ///< index in `path` of the first pose dominating the reference; -1: none
   int nearest_dominating_beyond_bar = -1;  ///< the first one beyond the success bar; -1: none
-  int most_contact_dominating = -1;  ///< the dominating pose with the most contact; -1: none
+  int most_contact_dominating = -1;        ///< the dominating pose with the most contact; -1: none
 };
 
 struct ValidateResult {

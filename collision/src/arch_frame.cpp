@@ -15,7 +15,7 @@
 namespace occlude::collision {
 namespace {
 
-constexpr double kInterfaceMm = 1.5;      // lower vertices this close to the upper form the interface
+constexpr double kInterfaceMm = 1.5;  // lower vertices this close to the upper form the interface
 constexpr std::size_t kMinInterface = 30;  // fewer: fall back to the lower jaw's own shape
 
 Eigen::Vector3d Centroid(const std::vector<Eigen::Vector3d>& points) {
@@ -35,22 +35,26 @@ Eigen::Vector3d SmallestAxis(const std::vector<Eigen::Vector3d>& points) {
 
 std::uint64_t CellKey(const Eigen::Vector3d& p, double cell) {
   auto u = [&](double v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / cell)) + (1 << 20)) & 0x1fffff;
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / cell)) + (1 << 20)) &
+           0x1fffff;
   };
   return (u(p.x()) << 42) | (u(p.y()) << 21) | u(p.z());
 }
 
 // Lower vertices with an upper vertex within kInterfaceMm (grid of upper vertices; the test
 // is on vertices, so a coarse upper mesh widens the interface slightly: it only feeds a fit).
-std::vector<Eigen::Vector3d> InterfacePoints(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L) {
+std::vector<Eigen::Vector3d> InterfacePoints(const io::TriangleMesh& lower_L,
+                                             const io::TriangleMesh& upper_L) {
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  for (std::uint32_t i = 0; i < upper_L.vertices.size(); ++i) cells[CellKey(upper_L.vertices[i], kInterfaceMm)].push_back(i);
+  for (std::uint32_t i = 0; i < upper_L.vertices.size(); ++i)
+    cells[CellKey(upper_L.vertices[i], kInterfaceMm)].push_back(i);
   std::vector<Eigen::Vector3d> out;
   const double r2 = kInterfaceMm * kInterfaceMm;
   for (const auto& v : lower_L.vertices) {
     bool near = false;
     for (int d = 0; d < 27 && !near; ++d) {
-      const Eigen::Vector3d q = v + kInterfaceMm * Eigen::Vector3d(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1);
+      const Eigen::Vector3d q =
+          v + kInterfaceMm * Eigen::Vector3d(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1);
       const auto it = cells.find(CellKey(q, kInterfaceMm));
       if (it == cells.end()) continue;
       for (const std::uint32_t j : it->second) {

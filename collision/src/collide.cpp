@@ -30,7 +30,9 @@ constexpr double kPruneSlackMm = 1e-9;  // keeps rounding from pruning a valid p
 // Bits set in a child mask (no popcnt instruction assumed).
 constexpr std::array<std::uint8_t, 256> kPopCount8 = [] {
   std::array<std::uint8_t, 256> t{};
-  for (int m = 0; m < 256; ++m) t[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>((m & 1) + t[static_cast<std::size_t>(m >> 1)]);
+  for (int m = 0; m < 256; ++m)
+    t[static_cast<std::size_t>(m)] =
+        static_cast<std::uint8_t>((m & 1) + t[static_cast<std::size_t>(m >> 1)]);
   return t;
 }();
 
@@ -47,23 +49,28 @@ constexpr std::size_t kTrialBudget = 800;
 struct Side {
   const SphereTree* tree;
   const Octree* oct;
-  const UnitSphere* table;  // OptimizedSphereTable()
-  const ExplicitNode* ex;   // explicit records (null when not built)
-  const DistanceBound* bound;  // null when not built
-  Eigen::Matrix3d R;      // rotation of this tree's frame into A
-  Eigen::Vector3d t;      // translation of this tree's frame into A
+  const UnitSphere* table;      // OptimizedSphereTable()
+  const ExplicitNode* ex;       // explicit records (null when not built)
+  const DistanceBound* bound;   // null when not built
+  Eigen::Matrix3d R;            // rotation of this tree's frame into A
+  Eigen::Vector3d t;            // translation of this tree's frame into A
   Eigen::Vector3d slot_dir[8];  // R * ChildSlotSign(k)
-  double s;               // voxel size
+  double s;                     // voxel size
   bool rotated;
-  double edge[kMaxLevels];          // node edge per level
+  double edge[kMaxLevels];           // node edge per level
   double simple_radius[kMaxLevels];  // sqrt(3)/2 * edge
   double child_offset[kMaxLevels];   // ChildCenterOffset(s, level)
 
   Side(const SphereTree& tr, const Eigen::Isometry3d& X, bool is_rotated)
-      : tree(&tr), oct(&tr.octree()), table(OptimizedSphereTable().data()),
+      : tree(&tr),
+        oct(&tr.octree()),
+        table(OptimizedSphereTable().data()),
         ex(tr.explicit_spheres().nodes.empty() ? nullptr : tr.explicit_spheres().nodes.data()),
-        bound(tr.distance_bound().empty() ? nullptr : &tr.distance_bound()), R(X.linear()),
-        t(X.translation()), s(tr.voxel_size_mm()), rotated(is_rotated) {
+        bound(tr.distance_bound().empty() ? nullptr : &tr.distance_bound()),
+        R(X.linear()),
+        t(X.translation()),
+        s(tr.voxel_size_mm()),
+        rotated(is_rotated) {
     for (int k = 0; k < 8; ++k) slot_dir[k] = R * ChildSlotSign(k);
     for (int level = 0; level < kMaxLevels; ++level) {
       edge[level] = tr.edge(level);
@@ -71,8 +78,12 @@ struct Side {
       child_offset[level] = ChildCenterOffset(s, level);
     }
   }
-  Eigen::Vector3d ToA(const Eigen::Vector3d& p) const { return rotated ? Eigen::Vector3d(R * p + t) : p; }
-  Eigen::Vector3d DirToA(const Eigen::Vector3d& v) const { return rotated ? Eigen::Vector3d(R * v) : v; }
+  Eigen::Vector3d ToA(const Eigen::Vector3d& p) const {
+    return rotated ? Eigen::Vector3d(R * p + t) : p;
+  }
+  Eigen::Vector3d DirToA(const Eigen::Vector3d& v) const {
+    return rotated ? Eigen::Vector3d(R * v) : v;
+  }
   Eigen::Vector3d FromA(const Eigen::Vector3d& p) const {
     return rotated ? Eigen::Vector3d(R.transpose() * (p - t)) : p;
   }
@@ -83,8 +94,8 @@ struct Side {
   }
   // Voxel centre in A, from integer coordinates (identical in every mode).
   Eigen::Vector3d VoxelCenterA(std::uint32_t leaf_node) const {
-    const Eigen::Vector3d p =
-        tree->grid().origin_F + s * (oct->coord[leaf_node].cast<double>() + Eigen::Vector3d::Constant(0.5));
+    const Eigen::Vector3d p = tree->grid().origin_F + s * (oct->coord[leaf_node].cast<double>() +
+                                                           Eigen::Vector3d::Constant(0.5));
     return ToA(p);
   }
 };
@@ -144,7 +155,6 @@ struct Entry {
   NodeRef a, b;
 };
 
-
 // Sphere of a node (centre in A, radius) for each mode.
 template <SphereMode kMode>
 struct Spheres;
@@ -201,7 +211,8 @@ struct Slab {
 
 Slab SlabOf(const Side& s, std::uint32_t node) {
   const ExplicitNode& rec = s.ex[node];
-  return {s.DirToA(Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny), static_cast<double>(rec.nz))),
+  return {s.DirToA(Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny),
+                                   static_cast<double>(rec.nz))),
           static_cast<double>(rec.slab_lo), static_cast<double>(rec.slab_hi)};
 }
 
@@ -209,8 +220,8 @@ Slab SlabOf(const Side& s, std::uint32_t node) {
 // slab (centre c_p, slab sp), by more than tol. For y = x - c_q with |y| <= r_q
 // and y.n_q in [lo_q, hi_q]: y.n_p = (y.n_q) cos + y.w with |w| = sin, so
 // y.n_p lies in cos*[lo_q, hi_q] widened by r_q*sin, and in [-r_q, r_q].
-bool SlabSeparates(const Eigen::Vector3d& c_p, const Slab& sp, const Eigen::Vector3d& c_q, double r_q,
-                   const Slab& sq, double tol) {
+bool SlabSeparates(const Eigen::Vector3d& c_p, const Slab& sp, const Eigen::Vector3d& c_q,
+                   double r_q, const Slab& sq, double tol) {
   const double cosv = sp.n.dot(sq.n);
   const double sinv = std::sqrt(std::max(0.0, 1.0 - cosv * cosv));
   const double base = (c_q - c_p).dot(sp.n);
@@ -245,7 +256,10 @@ bool NodesOverlap(const Side& a, const Side& b, const NodeRef& na, const NodeRef
 class Traversal {
  public:
   Traversal(const Side& a, const Side& b, const CollisionRequest& req, CollisionResult* res)
-      : a_(a), b_(b), req_(req), res_(res),
+      : a_(a),
+        b_(b),
+        req_(req),
+        res_(res),
         grow_sphere_(kCubeCircumradius * req.delta_mm),
         cube_test_(0.5 * a.s, 0.5 * b.s, b.R, 0.5 * req.delta_mm) {}
 
@@ -341,7 +355,8 @@ class Traversal {
     // A's voxels; the probe's gap estimate orders the survivors.
     auto probe = [&](std::uint32_t n) {
       ++res_->bound_tests;
-      return bound.ProbeAt(A * sph[n].head<3>().cast<double>() + t, static_cast<double>(sph[n].w()) + limit);
+      return bound.ProbeAt(A * sph[n].head<3>().cast<double>() + t,
+                           static_cast<double>(sph[n].w()) + limit);
     };
     stack->clear();
     if (probe(0).excluded) return;
@@ -393,7 +408,8 @@ class Traversal {
         for (int x = lo[0]; x <= hi[0]; ++x) {
           if (!bound.VoxelOccupied(x, y, z)) continue;
           ++res_->leaf_tests;
-          const Eigen::Vector3d ca = grid.origin_F + a_.s * (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5));
+          const Eigen::Vector3d ca =
+              grid.origin_F + a_.s * (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5));
           if (!cube_test_.Overlap(cb - ca)) continue;
           const std::uint64_t key = MortonEncode(x, y, z);
           const auto it = std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), key);
@@ -418,8 +434,8 @@ class Traversal {
         if (LeafPair(e) && req_.first_only) return false;
         continue;
       }
-      const bool split_a = e.b.level == 0 ||
-                           (e.a.level > 0 && a_.edge[e.a.level] >= b_.edge[e.b.level]);
+      const bool split_a =
+          e.b.level == 0 || (e.a.level > 0 && a_.edge[e.a.level] >= b_.edge[e.b.level]);
       if (split_a) {
         if (!Split<kMode>(a_, e.a, e.b, true, stack)) return false;
       } else {
@@ -462,7 +478,8 @@ class Traversal {
       }
       const int slot = __builtin_ctz(mask);
       const NodeRef c = Spheres<kMode>::Child(side, node, child, slot);
-      const bool hit = node_is_a ? SpheresOverlap<kMode>(c, other) : SpheresOverlap<kMode>(other, c);
+      const bool hit =
+          node_is_a ? SpheresOverlap<kMode>(c, other) : SpheresOverlap<kMode>(other, c);
       if (!hit || FarFromTree<kMode>(side, c, node_is_a ? b_ : a_)) continue;
       if (!sorted) {
         stack->push_back(node_is_a ? Entry{c, other} : Entry{other, c});
@@ -563,7 +580,8 @@ class CellTraversal {
       if (b_is_cell && e.a.level == 0) {
         ++res_->leaf_tests;
         const Eigen::Vector3d cb = b_.ToA(b_.tree->CubeCenter(e.b.node, e.b.level));
-        if (cube_tests_[static_cast<std::size_t>(e.b.level)].Overlap(cb - a_.VoxelCenterA(e.a.node))) {
+        if (cube_tests_[static_cast<std::size_t>(e.b.level)].Overlap(cb -
+                                                                     a_.VoxelCenterA(e.a.node))) {
           (*stamps)[e.b.node] = gen;
           res_->cells_b.push_back(e.b.node);
         }
@@ -571,7 +589,8 @@ class CellTraversal {
       }
       // A is not split below a_level while B still has to reach its cells.
       const int a_floor = b_is_cell ? 0 : req_.a_level;
-      const bool split_a = e.a.level > a_floor && (b_is_cell || a_.edge[e.a.level] >= b_.edge[e.b.level]);
+      const bool split_a =
+          e.a.level > a_floor && (b_is_cell || a_.edge[e.a.level] >= b_.edge[e.b.level]);
       const Side& side = split_a ? a_ : b_;
       const NodeRef& node = split_a ? e.a : e.b;
       const NodeRef& other = split_a ? e.b : e.a;
@@ -615,7 +634,9 @@ class BoundCellTraversal {
     const double grow = req_.reach_mm + kPruneSlackMm;
     const Eigen::Vector4f* sph =
         req_.b_spheres != nullptr ? req_.b_spheres : b_.tree->explicit_spheres().compact.data();
-    auto centre = [&](std::uint32_t n) { return Eigen::Vector3d(A * sph[n].head<3>().cast<double>() + t); };
+    auto centre = [&](std::uint32_t n) {
+      return Eigen::Vector3d(A * sph[n].head<3>().cast<double>() + t);
+    };
     // A negative radius (nothing to find in the node) fails every exclusion
     // test's margin unless handled: such nodes are dropped untested.
     auto far = [&](std::uint32_t n) {
@@ -641,13 +662,15 @@ class BoundCellTraversal {
       Eigen::Vector3d q[8];
       for (int k = 0; k < count; ++k) {
         q[k] = centre(first + static_cast<std::uint32_t>(k));
-        bound.Prefetch(q[k], static_cast<double>(sph[first + static_cast<std::uint32_t>(k)].w()) + grow);
+        bound.Prefetch(q[k],
+                       static_cast<double>(sph[first + static_cast<std::uint32_t>(k)].w()) + grow);
       }
       for (int k = count; k-- > 0;) {
         const std::uint32_t child = first + static_cast<std::uint32_t>(k);
         if (sph[child].w() < 0.0f) continue;
         ++res_->node_tests;
-        if (!bound.ExcludesAt(q[k], static_cast<double>(sph[child].w()) + grow)) stack->push_back({child, level - 1});
+        if (!bound.ExcludesAt(q[k], static_cast<double>(sph[child].w()) + grow))
+          stack->push_back({child, level - 1});
       }
     }
   }
@@ -701,7 +724,6 @@ class BoundCellTraversal {
 // near-miss pairs of nodes through at +1 mm open).
 constexpr int kOneSidedPairLevel = 0;
 
-
 void ValidatePose(const Eigen::Isometry3d& X_AB) {
   if (!X_AB.matrix().allFinite()) throw std::invalid_argument("X_AB has non-finite entries");
   const Eigen::Matrix3d RtR = X_AB.linear().transpose() * X_AB.linear();
@@ -746,27 +768,40 @@ void Collide(const SphereTree& a, const SphereTree& b, const Eigen::Isometry3d& 
   const Side side_b(b, X_AB, true);
   Traversal traversal(side_a, side_b, request, result);
   SphereMode mode = request.spheres;
-  if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = b.explicit_spheres().from;
-  if (mode == SphereMode::kExplicit && a.explicit_spheres().empty()) mode = a.explicit_spheres().from;
-  if (request.first_only && request.distance_bound && side_a.bound != nullptr && mode == SphereMode::kExplicit &&
-      side_a.bound->has_voxel_occupancy() && request.max_node_tests == 0) {
+  if (mode == SphereMode::kExplicit && b.explicit_spheres().empty())
+    mode = b.explicit_spheres().from;
+  if (mode == SphereMode::kExplicit && a.explicit_spheres().empty())
+    mode = a.explicit_spheres().from;
+  if (request.first_only && request.distance_bound && side_a.bound != nullptr &&
+      mode == SphereMode::kExplicit && side_a.bound->has_voxel_occupancy() &&
+      request.max_node_tests == 0) {
     thread_local std::vector<std::pair<std::uint32_t, int>> nodes;
     traversal.RunOneSidedExplicit(&nodes);
   } else if (request.first_only && request.distance_bound && side_a.bound != nullptr) {
     thread_local std::vector<NodeRef> nodes;
     const int pair_level = kOneSidedPairLevel;
     switch (mode) {
-      case SphereMode::kSimple: traversal.RunOneSided<SphereMode::kSimple>(&stack, &nodes, pair_level); break;
+      case SphereMode::kSimple:
+        traversal.RunOneSided<SphereMode::kSimple>(&stack, &nodes, pair_level);
+        break;
       case SphereMode::kOptimized:
         traversal.RunOneSided<SphereMode::kOptimized>(&stack, &nodes, pair_level);
         break;
-      case SphereMode::kExplicit: traversal.RunOneSided<SphereMode::kExplicit>(&stack, &nodes, pair_level); break;
+      case SphereMode::kExplicit:
+        traversal.RunOneSided<SphereMode::kExplicit>(&stack, &nodes, pair_level);
+        break;
     }
   } else {
     switch (mode) {
-      case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&stack); break;
-      case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&stack); break;
-      case SphereMode::kExplicit: traversal.Run<SphereMode::kExplicit>(&stack); break;
+      case SphereMode::kSimple:
+        traversal.Run<SphereMode::kSimple>(&stack);
+        break;
+      case SphereMode::kOptimized:
+        traversal.Run<SphereMode::kOptimized>(&stack);
+        break;
+      case SphereMode::kExplicit:
+        traversal.Run<SphereMode::kExplicit>(&stack);
+        break;
     }
   }
   if (request.exact) RefineExact(a, b, X_AB, request.delta_mm, result);
@@ -796,16 +831,23 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
     BoundCellTraversal traversal(side_a, side_b, request, result);
     // Only B's spheres matter here: the caller's, else B's explicit records when present.
     SphereMode mode = request.spheres;
-    if (mode == SphereMode::kExplicit && b.explicit_spheres().empty()) mode = SphereMode::kOptimized;
+    if (mode == SphereMode::kExplicit && b.explicit_spheres().empty())
+      mode = SphereMode::kOptimized;
     if (request.b_spheres != nullptr || mode == SphereMode::kExplicit) {
       thread_local std::vector<std::pair<std::uint32_t, int>> indices;
       traversal.RunExplicit(&indices);
       return;
     }
     switch (mode) {
-      case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&nodes); break;
-      case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&nodes); break;
-      case SphereMode::kExplicit: traversal.Run<SphereMode::kExplicit>(&nodes); break;
+      case SphereMode::kSimple:
+        traversal.Run<SphereMode::kSimple>(&nodes);
+        break;
+      case SphereMode::kOptimized:
+        traversal.Run<SphereMode::kOptimized>(&nodes);
+        break;
+      case SphereMode::kExplicit:
+        traversal.Run<SphereMode::kExplicit>(&nodes);
+        break;
     }
     return;
   }
@@ -821,13 +863,20 @@ void CollectCells(const SphereTree& a, const SphereTree& b, const Eigen::Isometr
   const Side side_b(b, X_AB, true);
   CellTraversal traversal(side_a, side_b, request, result);
   SphereMode mode = request.spheres;
-  if (mode == SphereMode::kExplicit && (a.explicit_spheres().empty() || b.explicit_spheres().empty())) {
+  if (mode == SphereMode::kExplicit &&
+      (a.explicit_spheres().empty() || b.explicit_spheres().empty())) {
     mode = SphereMode::kOptimized;
   }
   switch (mode) {
-    case SphereMode::kSimple: traversal.Run<SphereMode::kSimple>(&stack, &stamps, generation); break;
-    case SphereMode::kOptimized: traversal.Run<SphereMode::kOptimized>(&stack, &stamps, generation); break;
-    case SphereMode::kExplicit: traversal.Run<SphereMode::kExplicit>(&stack, &stamps, generation); break;
+    case SphereMode::kSimple:
+      traversal.Run<SphereMode::kSimple>(&stack, &stamps, generation);
+      break;
+    case SphereMode::kOptimized:
+      traversal.Run<SphereMode::kOptimized>(&stack, &stamps, generation);
+      break;
+    case SphereMode::kExplicit:
+      traversal.Run<SphereMode::kExplicit>(&stack, &stamps, generation);
+      break;
   }
 }
 

@@ -2,9 +2,10 @@
 // into candidate triangle pairs; duplicates (the same two triangles meet in
 // many voxel pairs) are removed by sorting 64-bit keys, then each pair gets the
 // exact triangle-triangle distance with an early exit beyond delta.
+#include "collide_exact.h"
+
 #include <algorithm>
 
-#include "collide_exact.h"
 #include "occlude/collision/triangle_triangle.h"
 
 namespace occlude::collision {

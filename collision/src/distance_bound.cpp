@@ -30,7 +30,8 @@ struct BrickMap {
 
   std::uint32_t At(const Eigen::Vector3i& b) {
     bool inserted = false;
-    const std::uint32_t i = index.Insert(BrickKey(b), static_cast<std::uint32_t>(bricks.size()), &inserted);
+    const std::uint32_t i =
+        index.Insert(BrickKey(b), static_cast<std::uint32_t>(bricks.size()), &inserted);
     if (inserted) {
       bricks.emplace_back();
       bricks.back().fill(cap);
@@ -69,8 +70,9 @@ BrickMap Pass(const BrickMap& src, int axis, const std::vector<int>& t) {
                 neighbour[k] = dst.At(nb);
               }
               local[axis] = pos - (k - 1) * kBrickEdge;
-              std::uint8_t& out = dst.bricks[static_cast<std::size_t>(neighbour[k])]
-                                            [static_cast<std::size_t>(CellIndex(local[0], local[1], local[2]))];
+              std::uint8_t& out =
+                  dst.bricks[static_cast<std::size_t>(neighbour[k])]
+                            [static_cast<std::size_t>(CellIndex(local[0], local[1], local[2]))];
               if (w < out) out = static_cast<std::uint8_t>(w);
               if (d == 0) break;
             }
@@ -116,7 +118,8 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
   // Rounded down so that the bound never exceeds the exact distance.
   for (int q = 0; q < 256; ++q) {
     out.m_mm[static_cast<std::size_t>(q)] =
-        0.5 * std::sqrt(static_cast<double>(std::min(q, static_cast<int>(out.cap)))) * out.s * (1.0 - 1e-12);
+        0.5 * std::sqrt(static_cast<double>(std::min(q, static_cast<int>(out.cap)))) * out.s *
+        (1.0 - 1e-12);
   }
   out.cap_mm = out.m_mm[out.cap];
 
@@ -141,7 +144,8 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
     for (const std::uint8_t v : field.bricks[i]) useful = useful || v < out.cap;
     if (!useful) continue;
     bool inserted = false;
-    out.index.Insert(BrickKey(field.coords[i]), static_cast<std::uint32_t>(out.bricks.size()), &inserted);
+    out.index.Insert(BrickKey(field.coords[i]), static_cast<std::uint32_t>(out.bricks.size()),
+                     &inserted);
     out.bricks.push_back(field.bricks[i]);
     kept.push_back(field.coords[i]);
   }
@@ -159,8 +163,8 @@ void DistanceBound::Level::BuildTable(const std::vector<Eigen::Vector3i>& coords
     hi = hi.cwiseMax(c);
   }
   const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
-  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
-                            static_cast<std::size_t>(dims.z());
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) *
+                            static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(dims.z());
   // 4 bytes per box cell against 512 per brick: affordable up to 32 cells per brick.
   constexpr std::size_t kMaxCellsPerBrick = 32;
   if (cells > kMaxCellsPerBrick * coords.size() + (std::size_t{1} << 16)) return;
@@ -171,19 +175,21 @@ void DistanceBound::Level::BuildTable(const std::vector<Eigen::Vector3i>& coords
     const Eigen::Vector3i c = coords[i] - lo;
     table[static_cast<std::size_t>(c.x()) +
           static_cast<std::size_t>(dims.x()) *
-              (static_cast<std::size_t>(c.y()) + static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(c.z()))] =
+              (static_cast<std::size_t>(c.y()) +
+               static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(c.z()))] =
         static_cast<std::uint32_t>(i);
   }
 }
 
-
 bool DistanceBound::Level::CellQ(const Eigen::Vector3d& q, std::uint8_t* value,
                                  Eigen::Vector3d* offset) const {
   constexpr double kRange = 1 << 22;  // cell coordinates whose bricks have keys
-  if (!(std::abs(q.x()) < kRange && std::abs(q.y()) < kRange && std::abs(q.z()) < kRange)) return false;  // also NaN
+  if (!(std::abs(q.x()) < kRange && std::abs(q.y()) < kRange && std::abs(q.z()) < kRange))
+    return false;  // also NaN
   const int cx = FloorInt(q.x()), cy = FloorInt(q.y()), cz = FloorInt(q.z());
   *offset = Eigen::Vector3d(q.x() - cx - 0.5, q.y() - cy - 0.5, q.z() - cz - 0.5);
-  const std::uint32_t i = BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
+  const std::uint32_t i =
+      BrickIndex(Eigen::Vector3i(cx >> kBrickBits, cy >> kBrickBits, cz >> kBrickBits));
   if (i == detail::KeyIndexHash::kNotFound) {
     *value = cap;
     return true;
@@ -213,7 +219,8 @@ double DistanceBound::LowerBoundAt(const Eigen::Vector3d& q0) const {
 bool DistanceBound::VoxelOccupied(int x, int y, int z) const {
   if (levels_.empty()) return false;
   const Level& level = levels_[0];
-  const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(x >> kBrickBits, y >> kBrickBits, z >> kBrickBits));
+  const std::uint32_t i =
+      level.BrickIndex(Eigen::Vector3i(x >> kBrickBits, y >> kBrickBits, z >> kBrickBits));
   constexpr int m = kBrickEdge - 1;
   return i != detail::KeyIndexHash::kNotFound &&
          level.bricks[i][static_cast<std::size_t>(CellIndex(x & m, y & m, z & m))] == 0;
@@ -226,7 +233,6 @@ bool DistanceBound::ExcludesAt(const Eigen::Vector3d& q0, double radius) const {
 bool DistanceBound::Excludes(const Eigen::Vector3d& p_F, double radius) const {
   return !levels_.empty() && ExcludesAt((p_F - origin_) * levels_[0].inv_s, radius);
 }
-
 
 std::size_t DistanceBound::num_bricks() const {
   std::size_t n = 0;

@@ -89,7 +89,8 @@ MemoryEstimate Make(double resident, double transient) {
 std::size_t ReadLimit(const char* file) {
   std::ifstream in(file);
   std::string text;
-  if (!(in >> text) || text.empty() || text.find_first_not_of("0123456789") != std::string::npos) return 0;
+  if (!(in >> text) || text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+    return 0;
   try {
     return static_cast<std::size_t>(std::stoull(text));
   } catch (const std::exception&) {
@@ -107,7 +108,8 @@ MemoryEstimate& MemoryEstimate::operator+=(const MemoryEstimate& other) {
   return *this;
 }
 
-MemoryEstimate EstimateSphereTreeMemory(const io::TriangleMesh& mesh, const SphereTreeOptions& options) {
+MemoryEstimate EstimateSphereTreeMemory(const io::TriangleMesh& mesh,
+                                        const SphereTreeOptions& options) {
   const double s = options.voxelize.voxel_size_mm;
   const double grid = static_cast<double>(EstimateVoxelizeBytes(mesh, options.voxelize));
   const double nodes = kNodesPerSurface * SurfaceVoxels(mesh, s);
@@ -135,8 +137,8 @@ MemoryEstimate EstimateNarrowBandSdfMemory(const io::TriangleMesh& mesh, double 
   return Make(bytes, kVoxelizeTransient * lists);
 }
 
-MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
-                                    const OracleOptions& options) {
+MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L,
+                                    const io::TriangleMesh& upper_U, const OracleOptions& options) {
   SphereTreeOptions tree;
   tree.voxelize.voxel_size_mm = options.voxel_size_mm;
   MemoryEstimate total = EstimateSphereTreeMemory(lower_L, tree);
@@ -152,7 +154,8 @@ MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L, const io::T
   // 0.2 mm: the oracle grew by 21 MB when the cells were halved).
   if (options.field_bound_mm >= 0.0) {
     const double s = options.voxel_size_mm / JawOracle::FieldBoundSplit(options.voxel_size_mm);
-    total += Make(std::max(kBoundMinBytes, kBoundBytesPerArea * lower_L.SurfaceArea() / (s * s)), 0.0);
+    total +=
+        Make(std::max(kBoundMinBytes, kBoundBytesPerArea * lower_L.SurfaceArea() / (s * s)), 0.0);
   }
   const double spacing = options.sample_spacing_mm > 0 ? options.sample_spacing_mm : 0.3;
   const double raw_samples = SampleCount(upper_U, spacing);
@@ -172,7 +175,8 @@ std::size_t PhysicalMemoryBytes() {
   std::size_t bytes = pages > 0 && page_size > 0
                           ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(page_size)
                           : 0;
-  for (const char* file : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+  for (const char* file :
+       {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
     const std::size_t limit = ReadLimit(file);
     if (limit > 0 && (bytes == 0 || limit < bytes)) bytes = limit;
   }

@@ -33,8 +33,9 @@ LevelBuild ParentLevel(const std::vector<std::uint64_t>& child_keys) {
 }  // namespace
 
 std::size_t Octree::MemoryBytes() const {
-  return level_begin.capacity() * sizeof(std::uint32_t) + level_end.capacity() * sizeof(std::uint32_t) +
-         coord.capacity() * sizeof(Eigen::Vector3i) + first_child.capacity() * sizeof(std::uint32_t) +
+  return level_begin.capacity() * sizeof(std::uint32_t) +
+         level_end.capacity() * sizeof(std::uint32_t) + coord.capacity() * sizeof(Eigen::Vector3i) +
+         first_child.capacity() * sizeof(std::uint32_t) +
          child_mask.capacity() * sizeof(std::uint8_t);
 }
 

@@ -3,10 +3,10 @@
 // and the arch frame.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <limits>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 #include <tuple>
@@ -25,7 +25,8 @@ long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint3
     const int k = n == 0 ? 13 : (n <= 13 ? n - 1 : n);
     const Eigen::Vector3i v = base + Eigen::Vector3i(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
     if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) continue;
-    const auto it = std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), MortonEncode(v));
+    const auto it =
+        std::lower_bound(grid.surface_keys.begin(), grid.surface_keys.end(), MortonEncode(v));
     if (it == grid.surface_keys.end() || *it != MortonEncode(v)) continue;
     const auto idx = static_cast<std::size_t>(it - grid.surface_keys.begin());
     for (auto i = grid.triangles_begin(idx); i < grid.triangles_end(idx); ++i) {
@@ -67,8 +68,8 @@ void SampleTriangle(const io::TriangleMesh& m, std::uint32_t t, double spacing,
 // surface, not a point between curved patches), carrying their total area.
 // Samples outside every voxel (voxel_of < 0) are dropped as before. Output in
 // (voxel, part, sub-cell) order; deterministic (ties keep the first member).
-void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double spacing, std::vector<RawSample>* raw,
-                  std::vector<long>* voxel_of) {
+void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double spacing,
+                  std::vector<RawSample>* raw, std::vector<long>* voxel_of) {
   const double s = grid.voxel_size_mm;
   const int k = std::max(1, static_cast<int>(std::ceil(s / spacing - 1e-9)));
   struct Keyed {
@@ -83,14 +84,17 @@ void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double sp
     const long v = (*voxel_of)[i];
     if (v < 0) continue;
     const Eigen::Vector3d corner =
-        grid.origin_F + s * MortonDecode(grid.surface_keys[static_cast<std::size_t>(v)]).cast<double>();
+        grid.origin_F +
+        s * MortonDecode(grid.surface_keys[static_cast<std::size_t>(v)]).cast<double>();
     std::int64_t sub = 0;
     for (int a = 3; a-- > 0;) {
       const double u = ((*raw)[i].p[a] - corner[a]) / s * k;
-      sub = sub * k + std::clamp(static_cast<std::int64_t>(std::floor(u)), std::int64_t{0}, std::int64_t{k - 1});
+      sub = sub * k + std::clamp(static_cast<std::int64_t>(std::floor(u)), std::int64_t{0},
+                                 std::int64_t{k - 1});
     }
     const std::uint32_t t = (*raw)[i].triangle;
-    keyed.push_back({v, mesh.triangle_part.empty() ? 0 : mesh.triangle_part[t], sub, static_cast<std::uint32_t>(i)});
+    keyed.push_back({v, mesh.triangle_part.empty() ? 0 : mesh.triangle_part[t], sub,
+                     static_cast<std::uint32_t>(i)});
   }
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
     return std::tie(a.voxel, a.part, a.sub, a.index) < std::tie(b.voxel, b.part, b.sub, b.index);
@@ -99,8 +103,8 @@ void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double sp
   std::vector<long> merged_voxel;
   for (std::size_t first = 0; first < keyed.size();) {
     std::size_t last = first + 1;
-    while (last < keyed.size() && keyed[last].voxel == keyed[first].voxel && keyed[last].part == keyed[first].part &&
-           keyed[last].sub == keyed[first].sub) {
+    while (last < keyed.size() && keyed[last].voxel == keyed[first].voxel &&
+           keyed[last].part == keyed[first].part && keyed[last].sub == keyed[first].sub) {
       ++last;
     }
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
@@ -110,11 +114,13 @@ void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double sp
       weighted += r.area * r.p;
       area += r.area;
     }
-    const Eigen::Vector3d centroid = area > 0.0 ? Eigen::Vector3d(weighted / area) : (*raw)[keyed[first].index].p;
+    const Eigen::Vector3d centroid =
+        area > 0.0 ? Eigen::Vector3d(weighted / area) : (*raw)[keyed[first].index].p;
     std::uint32_t best = keyed[first].index;
     for (std::size_t j = first + 1; j < last; ++j) {
       const std::uint32_t i = keyed[j].index;
-      if (((*raw)[i].p - centroid).squaredNorm() < ((*raw)[best].p - centroid).squaredNorm()) best = i;
+      if (((*raw)[i].p - centroid).squaredNorm() < ((*raw)[best].p - centroid).squaredNorm())
+        best = i;
     }
     RawSample r = (*raw)[best];
     r.area = area;
@@ -127,7 +133,8 @@ void MergeSamples(const VoxelGrid& grid, const io::TriangleMesh& mesh, double sp
 }
 
 // Centre of the bounding box of points [first, last) (not empty).
-Eigen::Vector3f BoxCentre(const std::vector<Eigen::Vector3f>& p, std::size_t first, std::size_t last) {
+Eigen::Vector3f BoxCentre(const std::vector<Eigen::Vector3f>& p, std::size_t first,
+                          std::size_t last) {
   Eigen::Vector3d lo = p[first].cast<double>(), hi = lo;
   for (auto i = first; i < last; ++i) {
     lo = lo.cwiseMin(p[i].cast<double>());
@@ -151,9 +158,12 @@ float Radius(const std::vector<Eigen::Vector4f>& offsets, std::size_t first, std
 
 const char* ToString(AccuracyLevel level) {
   switch (level) {
-    case AccuracyLevel::kVoxel: return "voxel";
-    case AccuracyLevel::kSubVoxel: return "subvoxel";
-    case AccuracyLevel::kExact: return "exact";
+    case AccuracyLevel::kVoxel:
+      return "voxel";
+    case AccuracyLevel::kSubVoxel:
+      return "subvoxel";
+    case AccuracyLevel::kExact:
+      return "exact";
   }
   return "?";
 }
@@ -164,7 +174,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   if (std::isnan(options.field_bound_mm) || !(options.field_bound_depth_mm >= 0.0) ||
       !std::isfinite(options.field_bound_depth_mm)) {
     throw std::invalid_argument(
-        "OracleOptions.field_bound_mm must not be NaN (negative: no field bound) and field_bound_depth_mm must be "
+        "OracleOptions.field_bound_mm must not be NaN (negative: no field bound) and "
+        "field_bound_depth_mm must be "
         "finite and >= 0");
   }
   const auto start = std::chrono::steady_clock::now();
@@ -201,10 +212,11 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     // levels 0, 1, 2 and 4 of the bound keep its coarsest cap as far out (in
     // mm) as the default levels 0, 1 and 3 of whole voxels.
     const int split = FieldBoundSplit(options.voxel_size_mm);
-    field_bound_ = DistanceBound::Build(sdf_.BandCellsWithin(static_cast<float>(options.field_bound_depth_mm + kMarginMm),
-                                                             static_cast<float>(options.field_bound_mm + kMarginMm), split),
-                                        DistanceBound::kMaxVoxels,
-                                        split == 2 ? std::vector<int>{0, 1, 2, 4} : std::vector<int>{0, 1, 3});
+    field_bound_ = DistanceBound::Build(
+        sdf_.BandCellsWithin(static_cast<float>(options.field_bound_depth_mm + kMarginMm),
+                             static_cast<float>(options.field_bound_mm + kMarginMm), split),
+        DistanceBound::kMaxVoxels,
+        split == 2 ? std::vector<int>{0, 1, 2, 4} : std::vector<int>{0, 1, 3});
   }
   arch_ = options.arch ? *options.arch : EstimateArchFrame(*lower_L, *upper_U);
 
@@ -217,7 +229,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
   for (std::uint32_t t = 0; t < up.num_triangles(); ++t) {
     const std::size_t first = raw.size();
     SampleTriangle(up, t, spacing, &raw);
-    for (std::size_t i = first; i < raw.size(); ++i) voxel_of.push_back(FindSampleVoxel(grid, raw[i].p, t));
+    for (std::size_t i = first; i < raw.size(); ++i)
+      voxel_of.push_back(FindSampleVoxel(grid, raw[i].p, t));
   }
   MergeSamples(grid, up, spacing, &raw, &voxel_of);
   const std::size_t nv = grid.num_surface();
@@ -260,11 +273,14 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
       c += static_cast<double>(sample_area_[i]) * sample_p_U_[i].cast<double>();
       area += static_cast<double>(sample_area_[i]);
     }
-    voxel_centroid_U_[v] = (area > 0 ? Eigen::Vector3d(c / area) : upper_.grid().VoxelCenter(
-                                                                     MortonDecode(grid.surface_keys[v])))
-                               .cast<float>();
+    voxel_centroid_U_[v] =
+        (area > 0 ? Eigen::Vector3d(c / area)
+                  : upper_.grid().VoxelCenter(MortonDecode(grid.surface_keys[v])))
+            .cast<float>();
     voxel_area_[v] = static_cast<float>(area);
-    voxel_part_[v] = voxel_sample_begin_[v] < voxel_sample_begin_[v + 1] ? sample_part_[voxel_sample_begin_[v]] : 0;
+    voxel_part_[v] = voxel_sample_begin_[v] < voxel_sample_begin_[v + 1]
+                         ? sample_part_[voxel_sample_begin_[v]]
+                         : 0;
   }
   // Leaf ranges per upper octree node (children are contiguous, in order).
   const Octree& oct = upper_.octree();
@@ -294,39 +310,48 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     sample_offset_U_.assign(sample_p_U_.size(), Eigen::Vector4f::Zero());
     voxel_sphere_U_.assign(nv, Eigen::Vector4f::Zero());
     for (std::uint32_t n = begin; n < end; ++n) {
-      const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
+      const auto first = voxel_sample_begin_[node_leaf_begin_[n]],
+                 last = voxel_sample_begin_[node_leaf_end_[n]];
       if (first == last) continue;
       const Eigen::Vector3f c = BoxCentre(sample_p_U_, first, last);
       for (auto i = first; i < last; ++i) {
-        sample_offset_U_[i].head<3>() = (sample_p_U_[i].cast<double>() - c.cast<double>()).cast<float>();
+        sample_offset_U_[i].head<3>() =
+            (sample_p_U_[i].cast<double>() - c.cast<double>()).cast<float>();
       }
       cell_center_U_[n - begin] = c;
       cell_radius_[n - begin] = Radius(sample_offset_U_, first, last, Eigen::Vector3f::Zero());
       for (auto v = node_leaf_begin_[n]; v < node_leaf_end_[n]; ++v) {
         const auto vb = voxel_sample_begin_[v], ve = voxel_sample_begin_[v + 1];
         if (vb == ve) continue;
-        const Eigen::Vector3f o = (BoxCentre(sample_p_U_, vb, ve).cast<double>() - c.cast<double>()).cast<float>();
-        voxel_sphere_U_[v] = Eigen::Vector4f(o.x(), o.y(), o.z(), Radius(sample_offset_U_, vb, ve, o));
+        const Eigen::Vector3f o =
+            (BoxCentre(sample_p_U_, vb, ve).cast<double>() - c.cast<double>()).cast<float>();
+        voxel_sphere_U_[v] =
+            Eigen::Vector4f(o.x(), o.y(), o.z(), Radius(sample_offset_U_, vb, ve, o));
       }
     }
   }
   // Per node at or above the cell level: its samples' bounding sphere, the
   // broad phase's spheres (CellRequest::b_spheres); radius -1 without samples.
   if (!oct.empty()) {
-    const std::uint32_t end = oct.level_end[static_cast<std::size_t>(std::min(options_.cell_level, oct.top_level))];
+    const std::uint32_t end =
+        oct.level_end[static_cast<std::size_t>(std::min(options_.cell_level, oct.top_level))];
     node_sample_sphere_U_.assign(end, Eigen::Vector4f(0.0f, 0.0f, 0.0f, -1.0f));
     for (std::uint32_t n = 0; n < end; ++n) {
-      const auto first = voxel_sample_begin_[node_leaf_begin_[n]], last = voxel_sample_begin_[node_leaf_end_[n]];
+      const auto first = voxel_sample_begin_[node_leaf_begin_[n]],
+                 last = voxel_sample_begin_[node_leaf_end_[n]];
       if (first == last) continue;
       const Eigen::Vector3f c = BoxCentre(sample_p_U_, first, last);
       double radius = 0.0;
-      for (auto i = first; i < last; ++i) radius = std::max(radius, (sample_p_U_[i] - c).cast<double>().norm());
-      node_sample_sphere_U_[n] = Eigen::Vector4f(c.x(), c.y(), c.z(), static_cast<float>(radius * (1.0 + 1e-6) + 1e-6));
+      for (auto i = first; i < last; ++i)
+        radius = std::max(radius, (sample_p_U_[i] - c).cast<double>().norm());
+      node_sample_sphere_U_[n] =
+          Eigen::Vector4f(c.x(), c.y(), c.z(), static_cast<float>(radius * (1.0 + 1e-6) + 1e-6));
     }
   }
   // The samples' bounding sphere (box centre, farthest sample), for CountNestedPieces.
   if (!sample_p_U_.empty()) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                    hi = -lo;
     for (const Eigen::Vector3f& p : sample_p_U_) {
       lo = lo.cwiseMin(p.cast<double>());
       hi = hi.cwiseMax(p.cast<double>());
@@ -345,7 +370,8 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
     for (const VoxelRun& r : lower_grid.interior_runs) {
       ++interior_row_begin_[static_cast<std::size_t>(r.y) + ny * static_cast<std::size_t>(r.z) + 1];
     }
-    for (std::size_t i = 0; i + 1 < interior_row_begin_.size(); ++i) interior_row_begin_[i + 1] += interior_row_begin_[i];
+    for (std::size_t i = 0; i + 1 < interior_row_begin_.size(); ++i)
+      interior_row_begin_[i + 1] += interior_row_begin_[i];
   }
   // Anterior teeth by Universal number: 6..11 (upper), 22..27 (lower).
   for (const auto& part : up.parts) {
@@ -357,15 +383,18 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 }
 
 std::size_t JawOracle::MemoryBytes() const {
-  return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() + field_bound_.MemoryBytes() +
-         sample_p_U_.capacity() * sizeof(Eigen::Vector3f) + sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
-         sample_area_.capacity() * sizeof(float) + component_samples_.capacity() * sizeof(ComponentSamples) +
+  return lower_.stats().total_bytes() + upper_.stats().total_bytes() + sdf_.MemoryBytes() +
+         field_bound_.MemoryBytes() + sample_p_U_.capacity() * sizeof(Eigen::Vector3f) +
+         sample_offset_U_.capacity() * sizeof(Eigen::Vector4f) +
+         sample_area_.capacity() * sizeof(float) +
+         component_samples_.capacity() * sizeof(ComponentSamples) +
          interior_row_begin_.capacity() * sizeof(std::uint32_t) +
          sample_part_.capacity() * sizeof(std::int32_t) +
          voxel_sample_begin_.capacity() * sizeof(std::uint32_t) +
          voxel_centroid_U_.capacity() * sizeof(Eigen::Vector3f) +
          (voxel_area_.capacity() + voxel_part_.capacity() + cell_radius_.capacity()) * 4 +
-         cell_center_U_.capacity() * sizeof(Eigen::Vector3f) + voxel_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
+         cell_center_U_.capacity() * sizeof(Eigen::Vector3f) +
+         voxel_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
          node_sample_sphere_U_.capacity() * sizeof(Eigen::Vector4f) +
          (node_leaf_begin_.capacity() + node_leaf_end_.capacity()) * sizeof(std::uint32_t);
 }

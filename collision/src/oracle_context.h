@@ -26,8 +26,8 @@ inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
   const VoxelGrid& grid = lower_.grid();
   const Eigen::Vector3i v = grid.VoxelOf(p_L);
   if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) return false;
-  const std::size_t row =
-      static_cast<std::size_t>(v.y()) + static_cast<std::size_t>(grid.dims.y()) * static_cast<std::size_t>(v.z());
+  const std::size_t row = static_cast<std::size_t>(v.y()) +
+                          static_cast<std::size_t>(grid.dims.y()) * static_cast<std::size_t>(v.z());
   for (std::uint32_t k = interior_row_begin_[row]; k < interior_row_begin_[row + 1]; ++k) {
     const VoxelRun& r = grid.interior_runs[k];
     if (v.x() < r.x_begin) return false;
@@ -38,7 +38,7 @@ inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
 
 /// Where the unknown samples of a cell (outside the field's band) lie.
 enum class UnknownSide {
-  kExterior,  ///< all outside the lower jaw: they count for nothing
+  kExterior,       ///< all outside the lower jaw: they count for nothing
   kMaybeInterior,  ///< classify each (only those inside the lower count, as deep)
   kInterior,       ///< all inside the lower jaw beyond the band: each counts as deep
 };
@@ -50,8 +50,8 @@ struct JawOracle::QueryContext {
   const Eigen::Isometry3d& X_LU;
   const OracleRequest& request;
   SdfSampler sampler;
-  Eigen::Matrix4f M;    ///< U offsets (mm) -> L voxel units of the field: R_LU / s (top-left 3x3)
-  Eigen::Matrix3d A;    ///< p_U -> the field's voxel coordinates of X_LU p_U: A p_U + b
+  Eigen::Matrix4f M;  ///< U offsets (mm) -> L voxel units of the field: R_LU / s (top-left 3x3)
+  Eigen::Matrix3d A;  ///< p_U -> the field's voxel coordinates of X_LU p_U: A p_U + b
   Eigen::Vector3d b;
   double outer;         ///< samples above this distance count for nothing but the minimum
   float outer_float;    ///< the smallest float >= outer (a float above it is above outer)
@@ -66,16 +66,23 @@ struct JawOracle::QueryContext {
   // The current cell.
   SdfSampler::GridPoint cell;  ///< grid point of the cell's sample centre in L
   Eigen::Vector3f cell_centre_U = Eigen::Vector3f::Zero();  ///< that centre in U
-  bool cell_known = false;     ///< the field is known at the centre
-  double cell_d = 0.0;         ///< its interpolated value
-  double cell_r = 0.0;         ///< the samples' largest distance from the centre
+  bool cell_known = false;                                  ///< the field is known at the centre
+  double cell_d = 0.0;                                      ///< its interpolated value
+  double cell_r = 0.0;  ///< the samples' largest distance from the centre
   UnknownSide unknown_side = UnknownSide::kMaybeInterior;
 
-  QueryContext(const Eigen::Isometry3d& X, const OracleRequest& r, const NarrowBandSdf& sdf, double reach_mm)
-      : X_LU(X), request(r), sampler(sdf), M(Eigen::Matrix4f::Zero()),
+  QueryContext(const Eigen::Isometry3d& X, const OracleRequest& r, const NarrowBandSdf& sdf,
+               double reach_mm)
+      : X_LU(X),
+        request(r),
+        sampler(sdf),
+        M(Eigen::Matrix4f::Zero()),
         outer(std::max(r.contact_band_mm, r.residuals ? r.residual_band_mm : 0.0)),
-        s(sdf.voxel_size_mm()), band_mm(sdf.band_mm()), interp_error(kCubeCircumradius * s),
-        band_edge_mm(band_mm - s), reach(reach_mm) {
+        s(sdf.voxel_size_mm()),
+        band_mm(sdf.band_mm()),
+        interp_error(kCubeCircumradius * s),
+        band_edge_mm(band_mm - s),
+        reach(reach_mm) {
     A = X.linear() * sampler.inv_voxel_size();
     b = (X.translation() - sampler.origin()) * sampler.inv_voxel_size();
     M.topLeftCorner<3, 3>() = A.cast<float>();

@@ -36,7 +36,8 @@ void JawOracle::CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* r
   if (grid.interior_runs.empty() || sample_p_U_.empty()) return;  // no closed lower component
   // Outside the lower grid's box entirely: nothing can be inside.
   const Eigen::Vector3d c_L = X_LU * samples_centre_U_;
-  const Eigen::Vector3d box_lo = grid.origin_F, box_hi = grid.origin_F + grid.voxel_size_mm * grid.dims.cast<double>();
+  const Eigen::Vector3d box_lo = grid.origin_F,
+                        box_hi = grid.origin_F + grid.voxel_size_mm * grid.dims.cast<double>();
   const Eigen::Vector3d gap = (box_lo - c_L).cwiseMax(c_L - box_hi).cwiseMax(0.0);
   if (gap.norm() > samples_radius_) return;
   // No cell was found, so no upper voxel cube (which holds the upper surface) comes within the
@@ -49,8 +50,9 @@ void JawOracle::CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* r
   }
 }
 
-void JawOracle::Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
-                           std::int32_t part, const OracleRequest& request, OracleResult* result) const {
+void JawOracle::Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad,
+                           double area, std::int32_t part, const OracleRequest& request,
+                           OracleResult* result) const {
   PartTotals& pt = result->parts[static_cast<std::size_t>(part)];
   if (d < 0.0 && -d <= request.penetration_search_mm + sdf_.band_mm()) {
     result->penetration_area_mm2 += area;
@@ -94,7 +96,8 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
     // Centroids as float offsets from the cell's centre, into the field's voxel
     // units about the cell's grid point (as the sub-voxel samples); the point in
     // L only for those that count.
-    const Eigen::Array4f m0 = q->M.col(0).array(), m1 = q->M.col(1).array(), m2 = q->M.col(2).array();
+    const Eigen::Array4f m0 = q->M.col(0).array(), m1 = q->M.col(1).array(),
+                         m2 = q->M.col(2).array();
     for (std::uint32_t v = first; v < last; ++v) {
       if (voxel_area_[v] <= 0.0f) continue;
       ++result->samples_evaluated;
@@ -123,7 +126,8 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
         continue;
       }
       result->min_distance_mm = std::min(result->min_distance_mm, s.distance);
-      Accumulate(p_L, s.distance, s.normal, static_cast<double>(sample_area_[i]), sample_part_[i], request, result);
+      Accumulate(p_L, s.distance, s.normal, static_cast<double>(sample_area_[i]), sample_part_[i],
+                 request, result);
     }
     return;
   }
@@ -185,9 +189,11 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
       if (!sampler.Value(c.base, local, &d)) {
         if (!voxel_side_found) {
           if (!centre_looked_up) look_up_centre();
-          voxel_side = q->SideOfUnknown(centre_known, static_cast<double>(centre_d), static_cast<double>(sphere.w()), [&] {
-            return LowerInterior(q->X_LU * (q->cell_centre_U + sphere.head<3>()).cast<double>());
-          });
+          voxel_side = q->SideOfUnknown(
+              centre_known, static_cast<double>(centre_d), static_cast<double>(sphere.w()), [&] {
+                return LowerInterior(q->X_LU *
+                                     (q->cell_centre_U + sphere.head<3>()).cast<double>());
+              });
           voxel_side_found = true;
         }
         if (voxel_side == UnknownSide::kInterior) {
@@ -201,8 +207,9 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
       if (d > outer) continue;  // the common case: counts for nothing else
       Eigen::Vector3f grad = Eigen::Vector3f::Zero();
       if (request.residuals) sampler.ValueAndGradient(c.base, local, &d, &grad);
-      Accumulate(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(d), grad.cast<double>(),
-                 static_cast<double>(sample_area_[i]), sample_part_[i], request, result);
+      Accumulate(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(d),
+                 grad.cast<double>(), static_cast<double>(sample_area_[i]), sample_part_[i],
+                 request, result);
     }
   }
   result->samples_evaluated += evaluated;

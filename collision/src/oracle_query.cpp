@@ -14,7 +14,8 @@ namespace {
 
 void CheckRequest(const OracleRequest& r) {
   auto bad = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
-  if (bad(r.contact_band_mm)) throw std::invalid_argument("OracleRequest.contact_band_mm must be finite and >= 0");
+  if (bad(r.contact_band_mm))
+    throw std::invalid_argument("OracleRequest.contact_band_mm must be finite and >= 0");
   if (bad(r.penetration_search_mm)) {
     throw std::invalid_argument("OracleRequest.penetration_search_mm must be finite and >= 0");
   }
@@ -31,7 +32,8 @@ constexpr double kFieldBoundSlackMm = 1e-5;
 // Distance from the lower surface up to which samples matter: the broad phase
 // reports every cell holding such a sample, and the exact level searches this far.
 double Reach(const OracleRequest& r) {
-  return std::max({r.contact_band_mm, r.penetration_search_mm, r.residuals ? r.residual_band_mm : 0.0});
+  return std::max(
+      {r.contact_band_mm, r.penetration_search_mm, r.residuals ? r.residual_band_mm : 0.0});
 }
 
 void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
@@ -58,7 +60,8 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   Reset(result, request.level, upper_.mesh().parts.size() == 0 ? 1 : upper_.mesh().parts.size());
   for (std::size_t p = 0; p < result->parts.size(); ++p) {
     result->parts[p].part = static_cast<std::int32_t>(p);
-    result->parts[p].tooth_number = p < upper_.mesh().parts.size() ? upper_.mesh().parts[p].tooth_number : 0;
+    result->parts[p].tooth_number =
+        p < upper_.mesh().parts.size() ? upper_.mesh().parts[p].tooth_number : 0;
   }
   CellRequest cells;
   cells.cell_level = options_.cell_level;
@@ -68,9 +71,10 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   // the field bound, every sample whose value lies in [-search, outer] lies in
   // one of its voxels.
   const double reach = Reach(request);
-  const double outer = std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
-  const bool field_bound = request.level != AccuracyLevel::kExact && request.cull && !field_bound_.empty() &&
-                           outer <= options_.field_bound_mm &&
+  const double outer =
+      std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
+  const bool field_bound = request.level != AccuracyLevel::kExact && request.cull &&
+                           !field_bound_.empty() && outer <= options_.field_bound_mm &&
                            request.penetration_search_mm <= options_.field_bound_depth_mm;
   cells.reach_mm = field_bound ? kFieldBoundSlackMm : reach;
   cells.a_bound = field_bound ? &field_bound_ : nullptr;
@@ -94,14 +98,17 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
   thread_local std::vector<SdfSampler::GridPoint> points;
   points.resize(found.cells_b.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    points[i] = q.sampler.GridPointAt(q.A * cell_center_U_[found.cells_b[i] - level_begin].cast<double>() + q.b);
+    points[i] = q.sampler.GridPointAt(
+        q.A * cell_center_U_[found.cells_b[i] - level_begin].cast<double>() + q.b);
   }
-  constexpr std::size_t kIndexAhead = 16, kCornersAhead = 8;  // a-bite-3shape: 8/4 .. 32/16 within noise
+  constexpr std::size_t kIndexAhead = 16,
+                        kCornersAhead = 8;  // a-bite-3shape: 8/4 .. 32/16 within noise
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i + kIndexAhead < points.size()) q.sampler.PrefetchIndex(points[i + kIndexAhead]);
     if (i + kCornersAhead < points.size()) q.sampler.PrefetchCorners(points[i + kCornersAhead]);
     const std::uint32_t node = found.cells_b[i];
-    if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]]) continue;
+    if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]])
+      continue;
     // At voxel level a point's value is the field at its voxel's centre,
     // within 0.866 s of the point: the cell's reach grows by that much.
     const double r = static_cast<double>(cell_radius_[node - level_begin]) +
@@ -115,7 +122,8 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
     q.cell_r = r;
     if (q.cell_known) {
       if (request.cull && q.Irrelevant(q.cell_d, r)) continue;
-      q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior : UnknownSide::kMaybeInterior;
+      q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior
+                                                                 : UnknownSide::kMaybeInterior;
     } else if (r < q.band_mm) {
       const Eigen::Vector3d c_L = X_LU * c_U;
       q.unknown_side = LowerInterior(c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
@@ -123,7 +131,8 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
       // LowerBound away from c, so a sample within r has D >= that - r and its
       // interpolated value (within interp_error of D) is above the outer band.
       if (request.cull && q.unknown_side == UnknownSide::kExterior &&
-          lower_.distance_bound().LowerBound(c_L) - r - q.interp_error > q.outer + QueryContext::kSlackMm) {
+          lower_.distance_bound().LowerBound(c_L) - r - q.interp_error >
+              q.outer + QueryContext::kSlackMm) {
         continue;
       }
     } else {

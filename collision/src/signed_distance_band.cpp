@@ -133,7 +133,6 @@ detail::BrickSet NarrowBandSdf::BandVoxels(const VoxelGrid& grid, int dilation) 
   return band;
 }
 
-
 void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
   // Corner (i, j, k) of a voxel is stored under the key of voxel (i, j, k):
   // the corner set is the band grown by one voxel upward along each axis.
@@ -157,7 +156,6 @@ void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
   }
   band_ = band;
 }
-
 
 void NarrowBandSdf::TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best,
                                  bool* found) const {
@@ -235,14 +233,16 @@ bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::ui
     for (int y = blo.y(); y <= bhi.y(); ++y) {
       for (int x = blo.x(); x <= bhi.x(); ++x) {
         const Eigen::Vector3i brick(x, y, z);
-        const double d2 = detail::BoxDistance2(q, 4 * brick, 4 * brick + Eigen::Vector3i::Constant(3));
+        const double d2 =
+            detail::BoxDistance2(q, 4 * brick, 4 * brick + Eigen::Vector3i::Constant(3));
         if (sorted) {
           order[static_cast<std::size_t>(count++)] = {d2, brick};
           continue;
         }
         if (d2 > best->squared_distance * inv_s2) continue;
-        const auto* b = surface_.FindAt(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
-                                        static_cast<std::uint32_t>(z));
+        const auto* b =
+            surface_.FindAt(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                            static_cast<std::uint32_t>(z));
         if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
       }
     }
@@ -259,7 +259,8 @@ bool NarrowBandSdf::FindNearest(const Eigen::Vector3d& p, double bound2, std::ui
   for (int i = 0; i < count; ++i) {
     const auto& [d2, brick] = order[static_cast<std::size_t>(i)];
     if (d2 > best->squared_distance * inv_s2) break;
-    const auto* b = surface_.FindAt(static_cast<std::uint32_t>(brick.x()), static_cast<std::uint32_t>(brick.y()),
+    const auto* b = surface_.FindAt(static_cast<std::uint32_t>(brick.x()),
+                                    static_cast<std::uint32_t>(brick.y()),
                                     static_cast<std::uint32_t>(brick.z()));
     if (b != nullptr) ScanBrick(q, brick, *b, p, best, &found);
   }
@@ -297,13 +298,14 @@ const float* NarrowBandSdf::Locate(const Eigen::Vector3d& p, Eigen::Vector3f* lo
   const double hi = kMortonMaxCoord - shift_;
   if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
   const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
-  const CornerBrick* brick = BrickAt(static_cast<std::uint32_t>(ijk.x()) >> 2, static_cast<std::uint32_t>(ijk.y()) >> 2,
-                                     static_cast<std::uint32_t>(ijk.z()) >> 2);
+  const CornerBrick* brick =
+      BrickAt(static_cast<std::uint32_t>(ijk.x()) >> 2, static_cast<std::uint32_t>(ijk.y()) >> 2,
+              static_cast<std::uint32_t>(ijk.z()) >> 2);
   if (brick == nullptr) return nullptr;
   const CornerBrick& b = *brick;
   const Eigen::Vector3i l(ijk.x() & 3, ijk.y() & 3, ijk.z() & 3);
-  const int bit = (l.x() & 1) | (l.y() & 1) << 1 | (l.z() & 1) << 2 | (l.x() >> 1) << 3 | (l.y() >> 1) << 4 |
-                  (l.z() >> 1) << 5;
+  const int bit = (l.x() & 1) | (l.y() & 1) << 1 | (l.z() & 1) << 2 | (l.x() >> 1) << 3 |
+                  (l.y() >> 1) << 4 | (l.z() >> 1) << 5;
   if (((b.mask >> bit) & 1) == 0) return nullptr;
   *local = (q - g).cast<float>();
   return b.value + l.x() + 5 * l.y() + 25 * l.z();
@@ -326,12 +328,16 @@ bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
     const float ddx = (1 - z) * ((1 - y) * e0 + y * e1) + z * ((1 - y) * e2 + y * e3);
     const float ddy = (1 - z) * (a1 - a0) + z * (a3 - a2);
     const float ddz = b1 - b0;
-    *gradient = Eigen::Vector3d(static_cast<double>(ddx), static_cast<double>(ddy), static_cast<double>(ddz)) * inv_s_;
+    *gradient = Eigen::Vector3d(static_cast<double>(ddx), static_cast<double>(ddy),
+                                static_cast<double>(ddz)) *
+                inv_s_;
   }
   return true;
 }
 
-VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const { return BandCellsWithin(depth, value, 1); }
+VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
+  return BandCellsWithin(depth, value, 1);
+}
 
 VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) const {
   if (split < 1 || split > 8) throw std::invalid_argument("BandCellsWithin: split must be in 1..8");
@@ -340,21 +346,24 @@ VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) co
   out.origin_F = origin_ - static_cast<double>(shift_) * s_ * Eigen::Vector3d::Ones();
   out.dims = split * (dims_ + Eigen::Vector3i::Constant(2 * shift_));
   const int n = split + 1;
-  std::vector<float> at(static_cast<std::size_t>(n * n * n));  // a voxel's field on its cells' corners
+  std::vector<float> at(
+      static_cast<std::size_t>(n * n * n));  // a voxel's field on its cells' corners
   for (std::size_t i = 0; i < band_.bricks().size(); ++i) {
     const detail::BrickSet::Brick& brick = band_.bricks()[i];
     const Eigen::Vector3i base = 4 * MortonDecode(brick.key);
     for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
       const int bit = __builtin_ctzll(m);
       // The bit is the voxel's 2x2x2-interleaved position in the brick (as Locate).
-      const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1, ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
+      const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1,
+                              ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
                               ((bit >> 2) & 1) | ((bit >> 5) & 1) << 1);
       const Eigen::Vector3i g = base + l;  // the voxel's index in `out`'s voxels (shifted)
       const float* v = corner_bricks_[i].value + l.x() + 5 * l.y() + 25 * l.z();
       float c[8];
       for (int o = 0; o < 8; ++o) c[o] = v[kCornerStep[o]];
       // A trilinear value lies between its voxel's smallest and largest corner.
-      const bool in_range = *std::min_element(c, c + 8) <= value && *std::max_element(c, c + 8) >= -depth;
+      const bool in_range =
+          *std::min_element(c, c + 8) <= value && *std::max_element(c, c + 8) >= -depth;
       // Surface voxels are kept whole (so that no cell found still means that
       // no upper voxel comes near the lower surface).
       const Eigen::Vector3i v_F = g - Eigen::Vector3i::Constant(shift_);
@@ -363,7 +372,8 @@ VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) co
       if (!in_range && !surface) continue;
       if (surface || split == 1) {
         for (int o = 0; o < split * split * split; ++o) {
-          out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+          out.surface_keys.push_back(MortonEncode(
+              split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
         }
         continue;
       }
@@ -386,7 +396,8 @@ VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) co
           for (int x = 0; x < split; ++x) {
             float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
             for (int o = 0; o < 8; ++o) {
-              const float f = at[static_cast<std::size_t>((x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
+              const float f = at[static_cast<std::size_t>(
+                  (x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
               lowest = std::min(lowest, f);
               highest = std::max(highest, f);
             }

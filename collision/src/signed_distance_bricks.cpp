@@ -124,8 +124,8 @@ void BrickSet::BuildDense() {
     hi = hi.cwiseMax(c);
   }
   const Eigen::Vector3i dims = hi - lo + Eigen::Vector3i::Ones();
-  const std::size_t cells = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
-                            static_cast<std::size_t>(dims.z());
+  const std::size_t cells = static_cast<std::size_t>(dims.x()) *
+                            static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(dims.z());
   // 4 bytes per box cell against >= 16 per brick record: affordable up to 32
   // cells per brick (the box of a jaw's band holds about 5 to 10), else the hash.
   constexpr std::size_t kMaxCellsPerBrick = 32;
@@ -138,7 +138,8 @@ void BrickSet::BuildDense() {
   for (std::size_t i = 0; i < bricks_.size(); ++i) {
     const Eigen::Vector3i c = MortonDecode(bricks_[i].key) - lo;
     dense_[static_cast<std::size_t>(c.x()) +
-           dense_dims_[0] * (static_cast<std::size_t>(c.y()) + dense_dims_[1] * static_cast<std::size_t>(c.z()))] =
+           dense_dims_[0] * (static_cast<std::size_t>(c.y()) +
+                             dense_dims_[1] * static_cast<std::size_t>(c.z()))] =
         static_cast<std::uint32_t>(i);
   }
 }

@@ -37,16 +37,18 @@ struct NarrowBandSdf::CornerScratch {
 };
 
 namespace {
-constexpr float kFarMm = 1e18f;  // a padding candidate's centre: its squared distance is still finite
+constexpr float kFarMm =
+    1e18f;  // a padding candidate's centre: its squared distance is still finite
 }  // namespace
 
 // Tests every candidate whose bounding sphere reaches within the best
 // distance so far of p (the sphere test in float, four at a time where SSE2
 // is there, the exact test in TestTriangle). Candidates are padded to a
 // multiple of four.
-void NarrowBandSdf::ScanCandidates(const CornerScratch& sc, std::size_t count, const Eigen::Vector3d& p,
-                                   Nearest* best, bool* found) const {
-  const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()), pz = static_cast<float>(p.z());
+void NarrowBandSdf::ScanCandidates(const CornerScratch& sc, std::size_t count,
+                                   const Eigen::Vector3d& p, Nearest* best, bool* found) const {
+  const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
+              pz = static_cast<float>(p.z());
   constexpr float kRelative = 1.0f + 1e-6f;  // float rounding of the best distance
 #if defined(__SSE2__)
   const __m128 x = _mm_set1_ps(px), y = _mm_set1_ps(py), z = _mm_set1_ps(pz);
@@ -55,10 +57,14 @@ void NarrowBandSdf::ScanCandidates(const CornerScratch& sc, std::size_t count, c
     const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&sc.cx[k]), x);
     const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&sc.cy[k]), y);
     const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&sc.cz[k]), z);
-    const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+    const __m128 d2 =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
     const __m128 reach = _mm_add_ps(_mm_loadu_ps(&sc.r[k]), bestv);
-    for (int hit = _mm_movemask_ps(_mm_cmple_ps(d2, _mm_mul_ps(reach, reach))); hit != 0; hit &= hit - 1) {
-      TestTriangle(sc.triangle[k + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hit)))], p, best, found);
+    for (int hit = _mm_movemask_ps(_mm_cmple_ps(d2, _mm_mul_ps(reach, reach))); hit != 0;
+         hit &= hit - 1) {
+      TestTriangle(
+          sc.triangle[k + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hit)))], p,
+          best, found);
       bestv = _mm_set1_ps(static_cast<float>(best->distance) * kRelative);
     }
   }
@@ -94,8 +100,8 @@ std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) 
   return value;
 }
 
-void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size_t bi, CornerScratch* sc,
-                                      std::vector<float>* value) const {
+void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size_t bi,
+                                      CornerScratch* sc, std::vector<float>* value) const {
   // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
   // triangle lies within sqrt(3) (d + 2) s: the full search always succeeds.
   const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
@@ -121,13 +127,16 @@ void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size
     }
   }
   for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
-    spread2 = std::max(spread2, (detail::BrickLocal(__builtin_ctzll(m)) - detail::BrickLocal(x0)).cast<double>().squaredNorm());
+    spread2 = std::max(spread2, (detail::BrickLocal(__builtin_ctzll(m)) - detail::BrickLocal(x0))
+                                    .cast<double>()
+                                    .squaredNorm());
   }
   const Eigen::Vector3d p0 = origin_ + s_ * corner_at(x0).cast<double>();
   Nearest n0;
   if (!FindNearest(p0, reach * reach, sc->hint, &n0)) {  // unreachable for a consistent grid
     std::uint32_t slot = brick.first;
-    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1, ++slot) (*value)[slot] = static_cast<float>(reach);
+    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1, ++slot)
+      (*value)[slot] = static_cast<float>(reach);
     return;
   }
   const double R = std::sqrt(n0.squared_distance) + s_ * std::sqrt(spread2) * (1.0 + 1e-9) + 1e-9;
@@ -150,13 +159,15 @@ void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size
   for (int bz = vlo.z() >> 2; bz <= vhi.z() >> 2; ++bz) {
     for (int by = vlo.y() >> 2; by <= vhi.y() >> 2; ++by) {
       for (int bx = vlo.x() >> 2; bx <= vhi.x() >> 2; ++bx) {
-        const auto* b = surface_.FindAt(static_cast<std::uint32_t>(bx), static_cast<std::uint32_t>(by),
-                                        static_cast<std::uint32_t>(bz));
+        const auto* b =
+            surface_.FindAt(static_cast<std::uint32_t>(bx), static_cast<std::uint32_t>(by),
+                            static_cast<std::uint32_t>(bz));
         if (b == nullptr) continue;
         const Eigen::Vector3i bb(bx, by, bz);
         std::uint64_t mask = b->mask;
         for (int a = 0; a < 3; ++a) {
-          mask &= detail::LayersMask(a, std::max(0, vlo[a] - 4 * bb[a]), std::min(3, vhi[a] - 4 * bb[a]));
+          mask &= detail::LayersMask(a, std::max(0, vlo[a] - 4 * bb[a]),
+                                     std::min(3, vhi[a] - 4 * bb[a]));
         }
         for (std::uint64_t m = mask; m != 0; m &= m - 1) {
           const int bit = __builtin_ctzll(m);
@@ -168,7 +179,8 @@ void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size
             g2 += gap * gap;
           }
           if (g2 > Rv2) continue;
-          const std::size_t idx = b->first + detail::BrickSet::PopCount(b->mask & ((std::uint64_t{1} << bit) - 1));
+          const std::size_t idx =
+              b->first + detail::BrickSet::PopCount(b->mask & ((std::uint64_t{1} << bit) - 1));
           for (std::uint32_t i = tri_offsets_[idx]; i < tri_offsets_[idx + 1]; ++i) {
             const std::uint32_t t = tri_indices_[i];
             if (sc->seen[t] == sc->epoch) continue;
@@ -178,7 +190,8 @@ void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size
             sc->cx.push_back(static_cast<float>(pt.center.x()));
             sc->cy.push_back(static_cast<float>(pt.center.y()));
             sc->cz.push_back(static_cast<float>(pt.center.z()));
-            sc->r.push_back(static_cast<float>(pt.radius) * (1.0f + 1e-5f) + 1e-4f);  // float rounding, mm
+            sc->r.push_back(static_cast<float>(pt.radius) * (1.0f + 1e-5f) +
+                            1e-4f);  // float rounding, mm
           }
         }
       }

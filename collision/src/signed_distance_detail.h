@@ -11,7 +11,8 @@ namespace occlude::collision::detail {
 
 /// Coordinates (0..3 each) of bit i of a brick's 64-bit Morton-ordered mask.
 inline Eigen::Vector3i BrickLocal(int i) {
-  return Eigen::Vector3i((i & 1) | ((i >> 2) & 2), ((i >> 1) & 1) | ((i >> 3) & 2), ((i >> 2) & 1) | ((i >> 4) & 2));
+  return Eigen::Vector3i((i & 1) | ((i >> 2) & 2), ((i >> 1) & 1) | ((i >> 3) & 2),
+                         ((i >> 2) & 1) | ((i >> 4) & 2));
 }
 
 /// Bits of a brick mask whose local coordinate along `axis` is in [lo, hi] (0..3).
@@ -28,7 +29,8 @@ inline constexpr std::array<std::uint64_t, 48> kLayersMasks = [] {
   std::array<std::uint64_t, 48> t{};
   for (int axis = 0; axis < 3; ++axis) {
     for (int lo = 0; lo < 4; ++lo) {
-      for (int hi = 0; hi < 4; ++hi) t[static_cast<std::size_t>(axis * 16 + lo * 4 + hi)] = ComputeLayersMask(axis, lo, hi);
+      for (int hi = 0; hi < 4; ++hi)
+        t[static_cast<std::size_t>(axis * 16 + lo * 4 + hi)] = ComputeLayersMask(axis, lo, hi);
     }
   }
   return t;
@@ -39,7 +41,8 @@ inline std::uint64_t LayersMask(int axis, int lo, int hi) {
 
 /// Squared distance, in voxel units, from continuous voxel coordinates q to the
 /// box [lo, hi + 1) of voxel indices.
-inline double BoxDistance2(const Eigen::Vector3d& q, const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+inline double BoxDistance2(const Eigen::Vector3d& q, const Eigen::Vector3i& lo,
+                           const Eigen::Vector3i& hi) {
   double d2 = 0.0;
   for (int a = 0; a < 3; ++a) {
     const double below = lo[a] - q[a];

@@ -105,23 +105,27 @@ bool PseudoNormals::OnBoundary(std::uint32_t t, const Eigen::Vector3d& barycentr
     if (barycentric[k] > barycentric[max_k]) max_k = k;
   }
   if (zeros >= 2) return boundary_vertex_[static_cast<std::size_t>(corners_[t][max_k])];
-  if (zeros == 1) return boundary_edge_[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(zero_k)];
+  if (zeros == 1)
+    return boundary_edge_[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(zero_k)];
   return false;
 }
 
-double PseudoNormals::Signed(std::uint32_t t, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& p,
-                             const Eigen::Vector3d& closest, Eigen::Vector3d* unit_gradient) const {
+double PseudoNormals::Signed(std::uint32_t t, const Eigen::Vector3d& barycentric,
+                             const Eigen::Vector3d& p, const Eigen::Vector3d& closest,
+                             Eigen::Vector3d* unit_gradient) const {
   const Eigen::Vector3d n = At(t, barycentric);
   const Eigen::Vector3d diff = p - closest;
   const double sign = (diff.dot(n) >= 0.0 || OnBoundary(t, barycentric)) ? 1.0 : -1.0;
   const double dist = diff.norm();
-  if (unit_gradient) *unit_gradient = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : n.normalized();
+  if (unit_gradient)
+    *unit_gradient = dist > 0.0 ? Eigen::Vector3d(sign * diff / dist) : n.normalized();
   return sign * dist;
 }
 
 std::size_t PseudoNormals::MemoryBytes() const {
   return (faces_.capacity() + edges_.capacity() + vertices_.capacity()) * sizeof(Eigen::Vector3f) +
-         corners_.capacity() * sizeof(Eigen::Vector3i) + (boundary_edge_.capacity() + boundary_vertex_.capacity()) / 8;
+         corners_.capacity() * sizeof(Eigen::Vector3i) +
+         (boundary_edge_.capacity() + boundary_vertex_.capacity()) / 8;
 }
 
 bool SignedDistanceBruteForce(const io::TriangleMesh& mesh, const PseudoNormals& normals,

@@ -31,8 +31,8 @@ UnitSphere FromThree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const E
     }
     return best;
   }
-  const Eigen::Vector3d offset = (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) /
-                                 (2.0 * n2);
+  const Eigen::Vector3d offset =
+      (ac.squaredNorm() * n.cross(ab) + ab.squaredNorm() * ac.cross(n)) / (2.0 * n2);
   return {a + offset, offset.norm()};
 }
 
@@ -52,11 +52,16 @@ UnitSphere FromFour(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 
 UnitSphere FromBoundary(const std::vector<Eigen::Vector3d>& r) {
   switch (r.size()) {
-    case 0: return {Eigen::Vector3d::Zero(), -1.0};  // contains nothing
-    case 1: return {r[0], 0.0};
-    case 2: return FromTwo(r[0], r[1]);
-    case 3: return FromThree(r[0], r[1], r[2]);
-    default: return FromFour(r[0], r[1], r[2], r[3]);
+    case 0:
+      return {Eigen::Vector3d::Zero(), -1.0};  // contains nothing
+    case 1:
+      return {r[0], 0.0};
+    case 2:
+      return FromTwo(r[0], r[1]);
+    case 3:
+      return FromThree(r[0], r[1], r[2]);
+    default:
+      return FromFour(r[0], r[1], r[2], r[3]);
   }
 }
 
@@ -82,15 +87,18 @@ std::array<UnitSphere, 256> ComputeTable() {
       if (!(mask & (1 << slot))) continue;
       const Eigen::Vector3i lo((slot & 1), (slot >> 1) & 1, (slot >> 2) & 1);
       for (int corner = 0; corner < 8; ++corner) {
-        const Eigen::Vector3i q = lo + Eigen::Vector3i(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        const Eigen::Vector3i q =
+            lo + Eigen::Vector3i(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
         used[q.x() + 3 * q.y() + 9 * q.z()] = true;
       }
     }
     std::vector<Eigen::Vector3d> pts;
     for (int i = 0; i < 27; ++i) {
-      if (used[i]) pts.emplace_back(0.5 * (i % 3) - 0.5, 0.5 * ((i / 3) % 3) - 0.5, 0.5 * (i / 9) - 0.5);
+      if (used[i])
+        pts.emplace_back(0.5 * (i % 3) - 0.5, 0.5 * ((i / 3) % 3) - 0.5, 0.5 * (i / 9) - 0.5);
     }
-    table[static_cast<std::size_t>(mask)] = MinimumEnclosingSphere(pts.data(), static_cast<int>(pts.size()));
+    table[static_cast<std::size_t>(mask)] =
+        MinimumEnclosingSphere(pts.data(), static_cast<int>(pts.size()));
   }
   return table;
 }

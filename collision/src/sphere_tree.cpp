@@ -53,19 +53,21 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
   for (std::size_t node = 0; node < n; ++node) {
     const double len = sum[node].norm();
     coherent[node] = area[node] > 0.0 && len >= kCoherentNormal * area[node];
-    const Eigen::Vector3d unit = coherent[node] ? Eigen::Vector3d(sum[node] / len) : Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d unit =
+        coherent[node] ? Eigen::Vector3d(sum[node] / len) : Eigen::Vector3d::UnitZ();
     // Store as float and use the float value everywhere, so build and query agree.
     ExplicitNode& rec = ex->nodes[node];
     rec.nx = static_cast<float>(unit.x());
     rec.ny = static_cast<float>(unit.y());
     rec.nz = static_cast<float>(unit.z());
-    normal[node] = Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny), static_cast<double>(rec.nz));
+    normal[node] = Eigen::Vector3d(static_cast<double>(rec.nx), static_cast<double>(rec.ny),
+                                   static_cast<double>(rec.nz));
   }
   const double h = 0.5 * grid.voxel_size_mm;
   for (std::size_t v = 0; v < grid.num_surface(); ++v) {
     const std::uint32_t leaf = oct.leaf_begin() + static_cast<std::uint32_t>(v);
-    const Eigen::Vector3d c =
-        grid.origin_F + grid.voxel_size_mm * (oct.coord[leaf].cast<double>() + Eigen::Vector3d::Constant(0.5));
+    const Eigen::Vector3d c = grid.origin_F + grid.voxel_size_mm * (oct.coord[leaf].cast<double>() +
+                                                                    Eigen::Vector3d::Constant(0.5));
     for (std::uint32_t node = leaf;; node = parent[node]) {
       const ExplicitNode& rec = ex->nodes[node];
       const Eigen::Vector3d centre(rec.cx, rec.cy, rec.cz);
@@ -90,9 +92,12 @@ void BuildSlabs(const io::TriangleMesh& mesh, const VoxelGrid& grid, const Octre
 
 const char* ToString(SphereMode mode) {
   switch (mode) {
-    case SphereMode::kSimple: return "simple";
-    case SphereMode::kOptimized: return "optimized";
-    case SphereMode::kExplicit: return "explicit";
+    case SphereMode::kSimple:
+      return "simple";
+    case SphereMode::kOptimized:
+      return "optimized";
+    case SphereMode::kExplicit:
+      return "explicit";
   }
   return "?";
 }
@@ -149,11 +154,15 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
     ex.compact.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const ExplicitNode& e = ex.nodes[i];
-      const Eigen::Vector3f c(static_cast<float>(e.cx), static_cast<float>(e.cy), static_cast<float>(e.cz));
+      const Eigen::Vector3f c(static_cast<float>(e.cx), static_cast<float>(e.cy),
+                              static_cast<float>(e.cz));
       // Each coordinate rounds by at most 2^-24 of its size (2^-23 to be safe).
-      const double grow = std::sqrt(3.0) * std::ldexp(std::max({std::abs(e.cx), std::abs(e.cy), std::abs(e.cz)}), -23);
+      const double grow =
+          std::sqrt(3.0) *
+          std::ldexp(std::max({std::abs(e.cx), std::abs(e.cy), std::abs(e.cz)}), -23);
       float r = static_cast<float>(e.radius + grow);
-      while (static_cast<double>(r) < e.radius + grow) r = std::nextafter(r, std::numeric_limits<float>::infinity());
+      while (static_cast<double>(r) < e.radius + grow)
+        r = std::nextafter(r, std::numeric_limits<float>::infinity());
       ex.compact[i] = Eigen::Vector4f(c.x(), c.y(), c.z(), r);
     }
     tree.stats_.seconds_explicit = detail::SecondsSince(start);

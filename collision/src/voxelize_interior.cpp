@@ -433,7 +433,9 @@ std::vector<std::int32_t> ClosedComponentOfTriangle(const io::TriangleMesh& mesh
   return closed;
 }
 
-std::vector<std::int32_t> ComponentOfTriangle(const io::TriangleMesh& mesh) { return FindComponents(mesh).of_triangle; }
+std::vector<std::int32_t> ComponentOfTriangle(const io::TriangleMesh& mesh) {
+  return FindComponents(mesh).of_triangle;
+}
 
 void BuildInterior(const io::TriangleMesh& mesh, const GridFrame& frame, VoxelGrid* grid,
                    VoxelizeStats* stats) {

@@ -181,8 +181,8 @@ TriangleMesh LoadMeshFromBytes(std::string_view bytes, const fs::path& name,
   LoadReport local;
   LoadReport& out = report != nullptr ? *report : local;
   if (bytes.empty()) detail::Fail(name, "the file is empty (0 bytes); export the mesh again");
-  TriangleMesh mesh = detail::BuildMesh(name, ReadByExtension(name, bytes),
-                                        MillimetresPer(options.unit), out);
+  TriangleMesh mesh =
+      detail::BuildMesh(name, ReadByExtension(name, bytes), MillimetresPer(options.unit), out);
   CheckUnits(name.string(), mesh, options.unit, out);
   return mesh;
 }

@@ -107,8 +107,9 @@ TriangleMesh BuildMesh(const fs::path& file, RawMesh raw, double mm_per_unit, Lo
     for (const Eigen::Vector3d* corner : {&a, &b, &c}) {
       const double largest = corner->cwiseAbs().maxCoeff();
       if (largest > kMaxCoordinateMm) {
-        Fail(file, "a vertex coordinate of " + FormatNumber(largest) + " mm is beyond the +-1e15 mm any scan "
-                   "can hold; the file is corrupt (or its units are wrong)");
+        Fail(file, "a vertex coordinate of " + FormatNumber(largest) +
+                       " mm is beyond the +-1e15 mm any scan "
+                       "can hold; the file is corrupt (or its units are wrong)");
       }
     }
     // Zero area, including two identical corners (which welding would merge).

@@ -33,7 +33,7 @@ constexpr double kPatchRadius = 0.25;         // mm, C == 0 within this distance
 constexpr double kGapRamp = 1.5;              // mm, C rises over this distance beyond the patch
 constexpr double kFarGap = 0.5;               // mm, C away from contacts
 constexpr double kContactSearchRadius = 1.0;  // mm around a flank point to look for a contact
-constexpr double kDesignReach = 0.3;          // mm: the upper design may sit this far above a contact
+constexpr double kDesignReach = 0.3;  // mm: the upper design may sit this far above a contact
 constexpr double kMinFlankSlope = 12.0 * M_PI / 180.0;  // a contact incline locks at first order
 constexpr double kMaxFlankSlope = 36.0 * M_PI / 180.0;  // and still opens kKeptApart when pulled
 
@@ -63,8 +63,10 @@ double LowerSlope(const OcclusalGrid& grid, const OcclusalFields& fields, int v)
   const int i = v / (grid.nt + 1), j = v % (grid.nt + 1);
   const int i0 = std::max(0, i - 1), i1 = std::min(grid.ns, i + 1);
   const int j0 = std::max(0, j - 1), j1 = std::min(grid.nt, j + 1);
-  const Eigen::Vector3d ts = LowerPoint(grid, fields, grid.Index(i1, j)) - LowerPoint(grid, fields, grid.Index(i0, j));
-  const Eigen::Vector3d tt = LowerPoint(grid, fields, grid.Index(i, j1)) - LowerPoint(grid, fields, grid.Index(i, j0));
+  const Eigen::Vector3d ts =
+      LowerPoint(grid, fields, grid.Index(i1, j)) - LowerPoint(grid, fields, grid.Index(i0, j));
+  const Eigen::Vector3d tt =
+      LowerPoint(grid, fields, grid.Index(i, j1)) - LowerPoint(grid, fields, grid.Index(i, j0));
   const Eigen::Vector3d n = ts.cross(tt);
   if (n.norm() == 0.0) return 0.0;
   return std::acos(std::min(1.0, std::abs(n.normalized().y())));

@@ -74,7 +74,8 @@ class SampleCost final : public ceres::SizedCostFunction<1, 6> {
  public:
   SampleCost(const SurfaceResiduals::Impl* model, std::size_t sample, int kind)
       : model_(model), sample_(sample), kind_(kind) {}
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
     const Eigen::Map<const Vector6d> z(parameters[0]);
     double hinge = 0.0, attraction = 0.0;
     Row6d jh, ja;
@@ -99,8 +100,10 @@ class SampleCost final : public ceres::SizedCostFunction<1, 6> {
 // (the deepest seat wins among poses of similar contact).
 class ClosureCost final : public ceres::SizedCostFunction<1, 6> {
  public:
-  ClosureCost(const Eigen::Vector3d& u, double force) : u_(u), c_(std::sqrt(force / (2.0 * kLeverMm))) {}
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  ClosureCost(const Eigen::Vector3d& u, double force)
+      : u_(u), c_(std::sqrt(force / (2.0 * kLeverMm))) {}
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
     const Eigen::Map<const Vector6d> z(parameters[0]);
     residuals[0] = c_ * (u_.dot(z.head<3>()) + kLeverMm);
     if (jacobians != nullptr && jacobians[0] != nullptr) {
@@ -151,8 +154,8 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     ++rounds;
     const Eigen::Isometry3d X_base = PoseOf(problem, x);
     const std::vector<bool> spikes = SpikeSamples(stage, samples, X_base, problem);
-    const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L, settings, 4000,
-                                       &spikes);
+    const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L,
+                                       settings, 4000, &spikes);
     if (model.area.empty()) {
       result.status = SolveStatus::kFailed;  // nothing within reach to seat on
       result.message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
@@ -165,16 +168,19 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     for (std::size_t i = 0; i < model.area.size(); ++i) {
       lsq.AddResidualBlock(
           new SampleCost(&model, i, 0),
-          new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) * settings.penetration_huber_mm),
+          new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) *
+                               settings.penetration_huber_mm),
           z.data());
-      lsq.AddResidualBlock(new SampleCost(&model, i, 1),
-                           new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z.data());
+      lsq.AddResidualBlock(
+          new SampleCost(&model, i, 1),
+          new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z.data());
     }
     const double closure_weight = settings.closure_weight;
     if (closure_weight > 0.0 && problem.settle_dir.squaredNorm() > 0.0) {
       double total_area = 0.0;
       for (const double a : model.area) total_area += a;
-      lsq.AddResidualBlock(new ClosureCost(problem.settle_dir, closure_weight * total_area), nullptr, z.data());
+      lsq.AddResidualBlock(new ClosureCost(problem.settle_dir, closure_weight * total_area),
+                           nullptr, z.data());
     }
     if (locked_any) {
       lsq.SetManifold(z.data(), new ceres::SubsetManifold(6, locked));
@@ -215,9 +221,12 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
       break;
     }
   }
-  if (result.status == SolveStatus::kMaxIterations || result.status == SolveStatus::kMaxEvaluations) {
+  if (result.status == SolveStatus::kMaxIterations ||
+      result.status == SolveStatus::kMaxEvaluations) {
     char last[160];
-    std::snprintf(last, sizeof last, "; %d rounds of solve and settle, the last moved the pose by %.4f (mm or deg; tolerance %.3f)",
+    std::snprintf(last, sizeof last,
+                  "; %d rounds of solve and settle, the last moved the pose by %.4f (mm or deg; "
+                  "tolerance %.3f)",
                   rounds, change, kOuterTolerance);
     result.message += last;
   }

@@ -13,8 +13,10 @@ namespace occlude::planner {
 
 double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2) {
   switch (request.penetration_measure) {
-    case PenetrationMeasure::kMax: return 0.0;
-    case PenetrationMeasure::kOutlierArea: return request.outlier_area_mm2;
+    case PenetrationMeasure::kMax:
+      return 0.0;
+    case PenetrationMeasure::kOutlierArea:
+      return request.outlier_area_mm2;
     case PenetrationMeasure::kPercentile:
       return (100.0 - request.penetration_percentile) / 100.0 * near_contact_area_mm2;
   }
@@ -22,11 +24,13 @@ double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2) {
 }
 
 double SpikePatchCap(const PlanRequest& request) {
-  return request.penetration_measure == PenetrationMeasure::kMax ? 0.0 : request.spike_patch_max_mm2;
+  return request.penetration_measure == PenetrationMeasure::kMax ? 0.0
+                                                                 : request.spike_patch_max_mm2;
 }
 
 double SpikeShallowMm(const PlanRequest& request) {
-  return std::max(0.002, 0.5 * std::min(request.max_penetration_mm, request.seat_penetration_allowance_mm));
+  return std::max(
+      0.002, 0.5 * std::min(request.max_penetration_mm, request.seat_penetration_allowance_mm));
 }
 
 double RobustPenetration(const std::vector<std::pair<double, double>>& depth_area, std::size_t deep,
@@ -43,7 +47,8 @@ double RobustPenetration(const std::vector<std::pair<double, double>>& depth_are
   std::vector<std::size_t> order(depth_area.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return depth_area[a].first > depth_area[b].first || (depth_area[a].first == depth_area[b].first && a < b);
+    return depth_area[a].first > depth_area[b].first ||
+           (depth_area[a].first == depth_area[b].first && a < b);
   });
   for (const std::size_t i : order) {
     if (depth_area[i].second > budget) return depth_area[i].first;
@@ -92,12 +97,14 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
     depth_area.emplace_back(pen[i].depth_mm, pen[i].area_mm2);
     kept.push_back(i);
   }
-  const double mean_area = r.penetrations.empty() ? 0.1 : r.penetration_area_mm2 / static_cast<double>(r.penetrations.size());
+  const double mean_area =
+      r.penetrations.empty() ? 0.1
+                             : r.penetration_area_mm2 / static_cast<double>(r.penetrations.size());
   const double deep_depth = q.penetration_search_mm + stage.oracle->lower_sdf().band_mm();
   std::vector<std::size_t> outliers;
-  e.constrained_penetration_mm =
-      RobustPenetration(depth_area, r.deep_samples, deep_depth, mean_area,
-                        OutlierBudget(request, r.contact_area_mm2 + r.penetration_area_mm2), &outliers);
+  e.constrained_penetration_mm = RobustPenetration(
+      depth_area, r.deep_samples, deep_depth, mean_area,
+      OutlierBudget(request, r.contact_area_mm2 + r.penetration_area_mm2), &outliers);
   if (r.deep_samples > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
   for (const std::size_t k : outliers) {
     const auto& p = r.penetrations[kept[k]];
@@ -110,8 +117,8 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
     if (rel.dot(arch.anterior_L) > arch.anterior_split_mm) continue;
     (rel.dot(arch.lateral_L) >= 0.0 ? e.posterior_left_mm2 : e.posterior_right_mm2) += c.area_mm2;
   }
-  e.score = e.contact_area_mm2 -
-            request.bilateral_posterior_weight * std::abs(e.posterior_left_mm2 - e.posterior_right_mm2);
+  e.score = e.contact_area_mm2 - request.bilateral_posterior_weight *
+                                     std::abs(e.posterior_left_mm2 - e.posterior_right_mm2);
   e.feasible = e.constrained_penetration_mm <= request.max_penetration_mm + 1e-9;
   return e;
 }
@@ -143,14 +150,17 @@ Eigen::Vector3d OcclusalPivot(const io::TriangleMesh& upper_U, const Eigen::Isom
                               const Eigen::Vector3d& occlusal_L, double crown_depth_mm) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double area = 0.0;
-  ForOcclusalTriangles(upper_U, X_LU, occlusal_L, crown_depth_mm, [&](const Eigen::Vector3d& c, double a) {
-    sum += a * c;
-    area += a;
-  });
+  ForOcclusalTriangles(upper_U, X_LU, occlusal_L, crown_depth_mm,
+                       [&](const Eigen::Vector3d& c, double a) {
+                         sum += a * c;
+                         area += a;
+                       });
   if (area > 0.0) return sum / area;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& v : upper_U.vertices) centroid += X_LU * v;
-  return upper_U.vertices.empty() ? centroid : Eigen::Vector3d(centroid / static_cast<double>(upper_U.num_vertices()));
+  return upper_U.vertices.empty()
+             ? centroid
+             : Eigen::Vector3d(centroid / static_cast<double>(upper_U.num_vertices()));
 }
 
 std::vector<Eigen::Vector3d> ArchReferencePoints_U(const io::TriangleMesh& upper_U,
@@ -174,17 +184,21 @@ std::vector<Eigen::Vector3d> ArchReferencePoints_U(const io::TriangleMesh& upper
 PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d& X_LU_b,
                        const std::vector<Eigen::Vector3d>& points_U) {
   PoseError e;
-  for (const auto& p : points_U) e.translation_mm = std::max(e.translation_mm, (X_LU_a * p - X_LU_b * p).norm());
+  for (const auto& p : points_U)
+    e.translation_mm = std::max(e.translation_mm, (X_LU_a * p - X_LU_b * p).norm());
   const Eigen::AngleAxisd aa(Eigen::Matrix3d(X_LU_a.linear() * X_LU_b.linear().transpose()));
   e.rotation_deg = std::abs(aa.angle()) * 180.0 / M_PI;
   return e;
 }
 
 std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isometry3d& X_LU_from,
-                                    const Eigen::Isometry3d& X_LU_to, const Eigen::Vector3d& p_LPivot,
-                                    const std::vector<Eigen::Vector3d>& points_U, const PlanRequest& request,
-                                    int steps) {
-  if (steps < 1) throw std::invalid_argument("EvaluatePath: steps must be at least 1 (got " + std::to_string(steps) + ")");
+                                    const Eigen::Isometry3d& X_LU_to,
+                                    const Eigen::Vector3d& p_LPivot,
+                                    const std::vector<Eigen::Vector3d>& points_U,
+                                    const PlanRequest& request, int steps) {
+  if (steps < 1)
+    throw std::invalid_argument("EvaluatePath: steps must be at least 1 (got " +
+                                std::to_string(steps) + ")");
   const PoseParameters to = DecomposePose(X_LU_to, p_LPivot, X_LU_from);
   std::vector<PathPoint> path;
   path.reserve(static_cast<std::size_t>(steps) + 1);
@@ -203,7 +217,8 @@ std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isome
 }
 
 bool Dominates(const PoseEvaluation& a, const PoseEvaluation& b) {
-  return a.contact_area_mm2 > b.contact_area_mm2 && a.constrained_penetration_mm <= b.constrained_penetration_mm &&
+  return a.contact_area_mm2 > b.contact_area_mm2 &&
+         a.constrained_penetration_mm <= b.constrained_penetration_mm &&
          a.deep_samples <= b.deep_samples;
 }
 

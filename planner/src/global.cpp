@@ -17,7 +17,8 @@ std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& sam
   std::vector<double> scores;
   for (int k = 0; k < count; ++k) {
     Vector6d x;
-    for (int i = 0; i < kNumDof; ++i) x[i] = problem.lower[i] + unit(rng) * (problem.upper[i] - problem.lower[i]);
+    for (int i = 0; i < kNumDof; ++i)
+      x[i] = problem.lower[i] + unit(rng) * (problem.upper[i] - problem.lower[i]);
     // The settle sets the occlusal height; start each sample from the reference height.
     const Eigen::Vector3d t = x.head<3>();
     x.head<3>() = t - problem.settle_dir * problem.settle_dir.dot(t);
@@ -30,7 +31,8 @@ std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& sam
   }
   std::vector<std::size_t> order(poses.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
   std::vector<Vector6d> sorted;
   for (const std::size_t i : order) sorted.push_back(poses[i]);
   return sorted;

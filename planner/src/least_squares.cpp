@@ -23,7 +23,8 @@ Eigen::Matrix3d LeftJacobian(const Eigen::Vector3d& w) {
   const double t = w.norm();
   const Eigen::Matrix3d W = Hat(w);
   if (t < 1e-6) return Eigen::Matrix3d::Identity() + 0.5 * W + W * W / 6.0;
-  return Eigen::Matrix3d::Identity() + (1.0 - std::cos(t)) / (t * t) * W + (t - std::sin(t)) / (t * t * t) * W * W;
+  return Eigen::Matrix3d::Identity() + (1.0 - std::cos(t)) / (t * t) * W +
+         (t - std::sin(t)) / (t * t * t) * W * W;
 }
 
 Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& w) {
@@ -51,7 +52,8 @@ double SeatSampleCost(double d, double area_mm2, bool attract, const ResidualSet
   double rho = 0.0;
   if (attract && d > 0.0) {
     // Cauchy: b^2 log(1 + s / b^2), s = a m^2, b^2 = c^2 a.
-    const double m = std::min(d, settings.window_mm), c2 = settings.attraction_scale_mm * settings.attraction_scale_mm;
+    const double m = std::min(d, settings.window_mm),
+                 c2 = settings.attraction_scale_mm * settings.attraction_scale_mm;
     rho += c2 * area_mm2 * std::log1p(m * m / c2);
   }
   const double e = -(d + settings.penetration_allowance_mm);
@@ -74,12 +76,14 @@ SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSe
     if (excluded && (*excluded)[i]) continue;
     double d = 0.0;
     bool deep = false;
-    if (detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d, nullptr, &deep) &&
+    if (detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d, nullptr,
+                              &deep) &&
         d <= settings.range_mm) {
       near.push_back(i);
     }
   }
-  const std::size_t stride = max_samples > 0 ? std::max<std::size_t>(1, (near.size() + max_samples - 1) / max_samples) : 1;
+  const std::size_t stride =
+      max_samples > 0 ? std::max<std::size_t>(1, (near.size() + max_samples - 1) / max_samples) : 1;
   for (std::size_t k = 0; k < near.size(); k += stride) {
     const std::size_t i = near[k];
     v_L.push_back(X_ref * all.p_U[i] - pivot);
@@ -110,8 +114,9 @@ double SurfaceResiduals::Impl::Distance(std::size_t i, const Vector6d& z, Row6d*
   return d;
 }
 
-void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double* hinge, double* attraction,
-                                       Row6d* j_hinge, Row6d* j_attraction) const {
+void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double* hinge,
+                                       double* attraction, Row6d* j_hinge,
+                                       Row6d* j_attraction) const {
   Row6d g;
   const double d = Distance(i, z, (j_hinge || j_attraction) ? &g : nullptr);
   const double s = std::sqrt(area[i]);
@@ -125,11 +130,12 @@ void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double*
 }
 
 SurfaceResiduals::SurfaceResiduals(const OracleStage& stage, const Eigen::Isometry3d& X_LU_base,
-                                   const Eigen::Isometry3d& X_LU_ref, const Eigen::Vector3d& p_LPivot,
+                                   const Eigen::Isometry3d& X_LU_ref,
+                                   const Eigen::Vector3d& p_LPivot,
                                    const ResidualSettings& settings, std::size_t max_samples) {
   const detail::SampleSet all =
-      detail::OcclusalSamples(stage.oracle->upper_tree().mesh(), X_LU_base, stage.oracle->arch().occlusal_L,
-                              detail::StageSpacing(stage));
+      detail::OcclusalSamples(stage.oracle->upper_tree().mesh(), X_LU_base,
+                              stage.oracle->arch().occlusal_L, detail::StageSpacing(stage));
   impl_ = std::make_unique<Impl>(stage, all, X_LU_base, X_LU_ref, p_LPivot, settings, max_samples);
 }
 

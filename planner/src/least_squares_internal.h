@@ -16,14 +16,15 @@ using Row6d = Eigen::Matrix<double, 1, 6>;
 
 struct SurfaceResiduals::Impl {
   Impl(const OracleStage& stage, const detail::SampleSet& all, const Eigen::Isometry3d& X_LU_base,
-       const Eigen::Isometry3d& X_LU_ref, const Eigen::Vector3d& p_LPivot, const ResidualSettings& settings,
-       std::size_t max_samples, const std::vector<bool>* excluded = nullptr);
+       const Eigen::Isometry3d& X_LU_ref, const Eigen::Vector3d& p_LPivot,
+       const ResidualSettings& settings, std::size_t max_samples,
+       const std::vector<bool>* excluded = nullptr);
 
   /// Signed distance of sample i at ambient parameters z and its gradient (1x6) in z.
   double Distance(std::size_t i, const Vector6d& z, Row6d* gradient) const;
   /// Hinge and attraction residuals of sample i (see least_squares.h) with their Jacobians.
-  void Residuals(std::size_t i, const Vector6d& z, double* hinge, double* attraction, Row6d* j_hinge,
-                 Row6d* j_attraction) const;
+  void Residuals(std::size_t i, const Vector6d& z, double* hinge, double* attraction,
+                 Row6d* j_hinge, Row6d* j_attraction) const;
 
   OracleStage stage;
   Eigen::Isometry3d X_ref;

@@ -4,11 +4,10 @@
 // penetration excess <= 0 (see Constraint): COBYLA with the constraint, or the
 // augmented Lagrangian around BOBYQA (default) / Sbplx; then settle the best
 // point along the occlusal axis on the outlier-robust measure.
-#include <nlopt.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlopt.hpp>
 #include <vector>
 
 #include "search_internal.h"
@@ -23,7 +22,7 @@ struct LocalState {
   const OracleStage* stage = nullptr;
   const SampleSet* samples = nullptr;
   const Problem* problem = nullptr;
-  std::vector<int> free;  // indices of free DOFs
+  std::vector<int> free;           // indices of free DOFs
   Vector6d x0 = Vector6d::Zero();  // values of the locked DOFs
   double cost_scale = 1.0;
   int evaluations = 0;
@@ -87,7 +86,8 @@ nlopt::opt MakeOptimizer(NloptLocalMethod method, unsigned n, int max_evaluation
     return opt;
   }
   nlopt::opt opt(nlopt::AUGLAG, n);
-  nlopt::opt local(method == NloptLocalMethod::kAuglagBobyqa ? nlopt::LN_BOBYQA : nlopt::LN_SBPLX, n);
+  nlopt::opt local(method == NloptLocalMethod::kAuglagBobyqa ? nlopt::LN_BOBYQA : nlopt::LN_SBPLX,
+                   n);
   local.set_xtol_abs(3e-3);
   local.set_ftol_rel(1e-5);
   opt.set_local_optimizer(local);
@@ -127,7 +127,8 @@ LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const
   // Two rounds: the second restarts from the best point with a third of the step (COBYLA's
   // trust region only shrinks, and a restart often leaves a premature stop).
   for (int round = 0; round < 2 && s.evaluations < max_evaluations; ++round) {
-    nlopt::opt opt = MakeOptimizer(problem.request->nlopt_local, n, max_evaluations - s.evaluations);
+    nlopt::opt opt =
+        MakeOptimizer(problem.request->nlopt_local, n, max_evaluations - s.evaluations);
     opt.set_lower_bounds(lb);
     opt.set_upper_bounds(ub);
     std::vector<double> round_step = step;
@@ -138,14 +139,16 @@ LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const
     opt.set_min_objective(Objective, &s);
     opt.add_inequality_constraint(Constraint, &s, 1e-4);
     if (round > 0) {
-      for (unsigned k = 0; k < n; ++k) y[k] = std::clamp(s.best[s.free[k]] / Scale(s.free[k]), lb[k], ub[k]);
+      for (unsigned k = 0; k < n; ++k)
+        y[k] = std::clamp(s.best[s.free[k]] / Scale(s.free[k]), lb[k], ub[k]);
     }
     double f = 0.0;
     try {
       const nlopt::result r = opt.optimize(y, f);
-      result.status = r == nlopt::MAXEVAL_REACHED ? SolveStatus::kMaxEvaluations : SolveStatus::kConverged;
-      result.message = std::string("nlopt ") + ToString(problem.request->nlopt_local) + ": result " +
-                       std::to_string(static_cast<int>(r));
+      result.status =
+          r == nlopt::MAXEVAL_REACHED ? SolveStatus::kMaxEvaluations : SolveStatus::kConverged;
+      result.message = std::string("nlopt ") + ToString(problem.request->nlopt_local) +
+                       ": result " + std::to_string(static_cast<int>(r));
     } catch (const nlopt::roundoff_limited&) {
       result.status = SolveStatus::kConverged;
       result.message = "nlopt: roundoff limited";

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
 #include <chrono>
+#include <mutex>
 #include <numeric>
 #include <thread>
 
@@ -16,11 +16,16 @@ namespace occlude::planner {
 
 const char* ToString(SolveStatus status) {
   switch (status) {
-    case SolveStatus::kConverged: return "converged";
-    case SolveStatus::kMaxEvaluations: return "max-evaluations";
-    case SolveStatus::kMaxIterations: return "max-iterations";
-    case SolveStatus::kInfeasible: return "infeasible";
-    case SolveStatus::kFailed: return "failed";
+    case SolveStatus::kConverged:
+      return "converged";
+    case SolveStatus::kMaxEvaluations:
+      return "max-evaluations";
+    case SolveStatus::kMaxIterations:
+      return "max-iterations";
+    case SolveStatus::kInfeasible:
+      return "infeasible";
+    case SolveStatus::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -28,7 +33,8 @@ const char* ToString(SolveStatus status) {
 bool DistinctPoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d& X_LU_b,
                    const std::vector<Eigen::Vector3d>& points_U, const PlanRequest& request) {
   const PoseError e = ComparePoses(X_LU_a, X_LU_b, points_U);
-  return e.translation_mm > request.distinct_translation_mm || e.rotation_deg > request.distinct_rotation_deg;
+  return e.translation_mm > request.distinct_translation_mm ||
+         e.rotation_deg > request.distinct_rotation_deg;
 }
 
 namespace {
@@ -41,10 +47,11 @@ struct Context {
   std::vector<detail::SampleSet> sets;  // per stage
 };
 
-// Stages [first, stop] of the chain for one start (coarse-to-fine; the others ignore them). Coarse-to-fine settles on the first stage
-// it runs when that is stage 0 and runs Ceres on each; the single-stage solvers run on the
-// last stage only.
-detail::LocalResult RunChain(const Context& c, const Vector6d& start, std::size_t first, std::size_t stop) {
+// Stages [first, stop] of the chain for one start (coarse-to-fine; the others ignore them).
+// Coarse-to-fine settles on the first stage it runs when that is stage 0 and runs Ceres on each;
+// the single-stage solvers run on the last stage only.
+detail::LocalResult RunChain(const Context& c, const Vector6d& start, std::size_t first,
+                             std::size_t stop) {
   const PlanRequest& req = *c.problem->request;
   const OracleSchedule& sch = *c.schedule;
   const std::size_t last = sch.size() - 1;
@@ -84,7 +91,8 @@ detail::LocalResult RunChain(const Context& c, const Vector6d& start, std::size_
       for (std::size_t s = first; s <= std::min(stop, last); ++s) {
         if (s == 0) x = detail::SettleOnSet(sch[s], c.sets[s], *c.problem, x, &evals);
         const bool exact = sch[s].level == collision::AccuracyLevel::kExact;
-        stage_result = detail::CeresLocal(sch[s], c.sets[s], *c.problem, x, exact ? 2 : 4, req.max_evaluations);
+        stage_result = detail::CeresLocal(sch[s], c.sets[s], *c.problem, x, exact ? 2 : 4,
+                                          req.max_evaluations);
         evals += stage_result.evaluations;
         x = stage_result.x;
       }
@@ -99,7 +107,8 @@ detail::LocalResult RunChain(const Context& c, const Vector6d& start, std::size_
 }
 
 // RunChain with the failures turned into a status (never throws, never non-finite).
-detail::LocalResult SafeChain(const Context& c, const Vector6d& start, std::size_t first, std::size_t stop) {
+detail::LocalResult SafeChain(const Context& c, const Vector6d& start, std::size_t first,
+                              std::size_t stop) {
   detail::LocalResult r;
   try {
     r = RunChain(c, start, first, stop);
@@ -148,7 +157,8 @@ struct Tracker {
   std::mutex mutex;
   bool OutOfTime() const {
     return request->max_seconds > 0.0 &&
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > request->max_seconds;
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+               request->max_seconds;
   }
   void Done() {
     const int n = ++done;
@@ -186,8 +196,8 @@ std::vector<Vector6d> MakeStarts(const Context& c, int* evaluations) {
   const detail::Problem& problem = *c.problem;
   std::vector<Vector6d> starts{Vector6d::Zero()};
   if (req.solver == SolverKind::kNloptGlobal || req.solver == SolverKind::kCoarseToFine) {
-    const auto seeds = detail::GlobalSeeds(c.schedule->front(), c.sets.front(), problem, req.num_global_samples,
-                                           req.seed, evaluations);
+    const auto seeds = detail::GlobalSeeds(c.schedule->front(), c.sets.front(), problem,
+                                           req.num_global_samples, req.seed, evaluations);
     for (const Vector6d& s : seeds) {
       if (static_cast<int>(starts.size()) >= req.num_starts) break;
       bool distinct = true;
@@ -202,7 +212,8 @@ std::vector<Vector6d> MakeStarts(const Context& c, int* evaluations) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     while (static_cast<int>(starts.size()) < req.num_starts) {
       Vector6d x;
-      for (int i = 0; i < kNumDof; ++i) x[i] = problem.lower[i] + unit(rng) * (problem.upper[i] - problem.lower[i]);
+      for (int i = 0; i < kNumDof; ++i)
+        x[i] = problem.lower[i] + unit(rng) * (problem.upper[i] - problem.lower[i]);
       starts.push_back(x);
     }
   }
@@ -236,14 +247,16 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
   Tracker tracker;
   tracker.request = &request;
   tracker.start = std::chrono::steady_clock::now();
-  const bool staged = request.solver == SolverKind::kCoarseToFine || request.solver == SolverKind::kNloptGlobal;
+  const bool staged =
+      request.solver == SolverKind::kCoarseToFine || request.solver == SolverKind::kNloptGlobal;
   if (staged && last > 0 && starts.size() > 1) {
     // Every start on the coarse stage; only the best distinct coarse seats (by the coarse
     // seat cost) go on to the finer stages: the fine models see only seats that can win.
     std::vector<detail::LocalResult> coarse(starts.size());
     std::vector<double> coarse_cost(starts.size()), coarse_cpu(starts.size());
     std::vector<char> ran(starts.size(), 0);
-    const std::size_t refine = std::min<std::size_t>(starts.size(), static_cast<std::size_t>(std::max(1, request.max_proposals)));
+    const std::size_t refine = std::min<std::size_t>(
+        starts.size(), static_cast<std::size_t>(std::max(1, request.max_proposals)));
     tracker.total = static_cast<int>(starts.size() + refine);
     worker_cpu += ParallelFor(starts.size(), request.num_threads, [&](std::size_t i) {
       if (i > 0 && tracker.OutOfTime()) {  // the start pose itself always runs
@@ -252,8 +265,9 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
       }
       const double t0 = detail::CpuSeconds();
       coarse[i] = SafeChain(c, starts[i], 0, 0);
-      coarse_cost[i] = detail::EvaluateSet(schedule.front(), c.sets.front(), detail::PoseOf(problem, coarse[i].x),
-                                           problem).seat_cost;
+      coarse_cost[i] = detail::EvaluateSet(schedule.front(), c.sets.front(),
+                                           detail::PoseOf(problem, coarse[i].x), problem)
+                           .seat_cost;
       coarse_cpu[i] = detail::CpuSeconds() - t0;
       ran[i] = 1;
       tracker.Done();
@@ -269,7 +283,8 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
       if (static_cast<int>(kept.size()) >= std::max(1, request.max_proposals)) break;
       bool distinct = true;
       for (const std::size_t k : kept) {
-        distinct = distinct && DistinctPoses(detail::PoseOf(problem, coarse[i].x), detail::PoseOf(problem, coarse[k].x),
+        distinct = distinct && DistinctPoses(detail::PoseOf(problem, coarse[i].x),
+                                             detail::PoseOf(problem, coarse[k].x),
                                              problem.ref_points_U, request);
       }
       if (distinct) kept.push_back(i);
@@ -277,13 +292,15 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
     for (std::size_t i = 0; i < starts.size(); ++i) {
       if (ran[i]) result.total_evaluations += coarse[i].evaluations;
     }
-    tracker.total = static_cast<int>(starts.size() - static_cast<std::size_t>(tracker.skipped.load()) + kept.size());
+    tracker.total = static_cast<int>(
+        starts.size() - static_cast<std::size_t>(tracker.skipped.load()) + kept.size());
     candidates.resize(kept.size());
     worker_cpu += ParallelFor(kept.size(), request.num_threads, [&](std::size_t k) {
       const std::size_t i = kept[k];
       const double t0 = detail::CpuSeconds();
       detail::LocalResult fine = SafeChain(c, coarse[i].x, 1, last);
-      if (fine.status == SolveStatus::kFailed) fine.message = coarse[i].message + "; " + fine.message;
+      if (fine.status == SolveStatus::kFailed)
+        fine.message = coarse[i].message + "; " + fine.message;
       candidates[k] = Finish(c, static_cast<int>(i), fine);
       candidates[k].evaluations += coarse[i].evaluations;
       candidates[k].cpu_seconds = coarse_cpu[i] + detail::CpuSeconds() - t0;
@@ -329,11 +346,13 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
     if (static_cast<int>(result.proposals.size()) >= request.max_proposals) break;
     bool distinct = true;
     for (const Proposal& q : result.proposals) {
-      distinct = distinct && DistinctPoses(candidates[i].X_LU, q.X_LU, problem.ref_points_U, request);
+      distinct =
+          distinct && DistinctPoses(candidates[i].X_LU, q.X_LU, problem.ref_points_U, request);
     }
     if (distinct) result.proposals.push_back(candidates[i]);
   }
-  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return result;
 }
 

@@ -37,7 +37,8 @@ Vector6d Clamp(const Problem& problem, const Vector6d& x) {
 
 Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request) {
   ValidateRequest(request);
-  if (schedule.empty()) throw std::invalid_argument("schedule: empty; give at least one OracleStage");
+  if (schedule.empty())
+    throw std::invalid_argument("schedule: empty; give at least one OracleStage");
   for (const OracleStage& s : schedule) {
     if (s.oracle == nullptr) throw std::invalid_argument("schedule: an OracleStage has no oracle");
   }
@@ -47,7 +48,8 @@ Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request) 
   p.X_ref = request.X_LU_start;
   p.arch = finest.arch();
   const io::TriangleMesh& upper_U = finest.upper_tree().mesh();
-  p.pivot_L = request.pivot_L ? *request.pivot_L : OcclusalPivot(upper_U, p.X_ref, p.arch.occlusal_L);
+  p.pivot_L =
+      request.pivot_L ? *request.pivot_L : OcclusalPivot(upper_U, p.X_ref, p.arch.occlusal_L);
   p.lower << request.lower_bound.translation_mm, request.lower_bound.rotation_deg;
   p.upper << request.upper_bound.translation_mm, request.upper_bound.rotation_deg;
   for (int i = 0; i < kNumDof; ++i) {

@@ -10,10 +10,14 @@ namespace occlude::planner {
 
 const char* ToString(SolverKind kind) {
   switch (kind) {
-    case SolverKind::kNloptLocal: return "nlopt-local";
-    case SolverKind::kNloptGlobal: return "nlopt-global";
-    case SolverKind::kCeres: return "ceres";
-    case SolverKind::kCoarseToFine: return "coarse-to-fine";
+    case SolverKind::kNloptLocal:
+      return "nlopt-local";
+    case SolverKind::kNloptGlobal:
+      return "nlopt-global";
+    case SolverKind::kCeres:
+      return "ceres";
+    case SolverKind::kCoarseToFine:
+      return "coarse-to-fine";
   }
   return "?";
 }
@@ -29,9 +33,12 @@ SolverKind SolverKindFromName(const std::string& name) {
 
 const char* ToString(NloptLocalMethod method) {
   switch (method) {
-    case NloptLocalMethod::kCobyla: return "cobyla";
-    case NloptLocalMethod::kAuglagBobyqa: return "auglag-bobyqa";
-    case NloptLocalMethod::kAuglagSbplx: return "auglag-sbplx";
+    case NloptLocalMethod::kCobyla:
+      return "cobyla";
+    case NloptLocalMethod::kAuglagBobyqa:
+      return "auglag-bobyqa";
+    case NloptLocalMethod::kAuglagSbplx:
+      return "auglag-sbplx";
   }
   return "?";
 }
@@ -47,9 +54,12 @@ NloptLocalMethod NloptLocalMethodFromName(const std::string& name) {
 
 const char* ToString(PenetrationMeasure measure) {
   switch (measure) {
-    case PenetrationMeasure::kMax: return "max";
-    case PenetrationMeasure::kOutlierArea: return "outlier-area";
-    case PenetrationMeasure::kPercentile: return "percentile";
+    case PenetrationMeasure::kMax:
+      return "max";
+    case PenetrationMeasure::kOutlierArea:
+      return "outlier-area";
+    case PenetrationMeasure::kPercentile:
+      return "percentile";
   }
   return "?";
 }
@@ -76,19 +86,22 @@ void ValidateRequest(const PlanRequest& r) {
   if (!(std::isfinite(r.spike_patch_max_mm2) && r.spike_patch_max_mm2 >= 0.0)) {
     fail("spike_patch_max_mm2: must be finite and >= 0 (0 turns spike patches off; default 5)");
   }
-  if (!(std::isfinite(r.max_seconds) && r.max_seconds >= 0.0)) fail("max_seconds: must be finite and >= 0 (0 = no budget)");
+  if (!(std::isfinite(r.max_seconds) && r.max_seconds >= 0.0))
+    fail("max_seconds: must be finite and >= 0 (0 = no budget)");
   if (!finite_pos(r.seat_window_mm)) fail("seat_window_mm: must be finite and > 0 (default 1.0)");
   if (!finite_pos(r.seat_scale_mm)) fail("seat_scale_mm: must be finite and > 0 (default 0.3)");
   if (!(std::isfinite(r.seat_penetration_allowance_mm) && r.seat_penetration_allowance_mm >= 0.0)) {
     fail("seat_penetration_allowance_mm: must be finite and >= 0 (default 0.02)");
   }
-  if (!(r.seat_min_facing >= -1.0 && r.seat_min_facing <= 1.0)) fail("seat_min_facing: must be in [-1, 1] (default 0.6)");
+  if (!(r.seat_min_facing >= -1.0 && r.seat_min_facing <= 1.0))
+    fail("seat_min_facing: must be in [-1, 1] (default 0.6)");
   if (!(r.bilateral_posterior_weight >= 0.0 && r.bilateral_posterior_weight <= 1.0)) {
     fail("bilateral_posterior_weight: must be in [0, 1]");
   }
   for (int i = 0; i < 3; ++i) {
     if (!(r.lower_bound.translation_mm[i] <= 0.0 && r.upper_bound.translation_mm[i] >= 0.0 &&
-          std::isfinite(r.lower_bound.translation_mm[i]) && std::isfinite(r.upper_bound.translation_mm[i]))) {
+          std::isfinite(r.lower_bound.translation_mm[i]) &&
+          std::isfinite(r.upper_bound.translation_mm[i]))) {
       fail("lower_bound/upper_bound translation " + std::to_string(i) +
            ": need finite lower <= 0 <= upper (mm, relative to the start pose)");
     }
@@ -112,13 +125,15 @@ void ValidateRequest(const PlanRequest& r) {
 }
 
 collision::OracleOptions StageOracleOptions(const collision::OracleOptions& base,
-                                            const std::vector<double>& voxel_sizes_mm, std::size_t index) {
+                                            const std::vector<double>& voxel_sizes_mm,
+                                            std::size_t index) {
   collision::OracleOptions o = base;
   o.voxel_size_mm = voxel_sizes_mm.at(index);
   // The first of several stages is the wide one: its field reaches kCoarseBandMm so that the
   // seat objective pulls far starts in (the finer stages only refine).
   if (index == 0 && voxel_sizes_mm.size() > 1) {
-    o.sdf_dilation_voxels = std::max(o.sdf_dilation_voxels, static_cast<int>(std::ceil(kCoarseBandMm / o.voxel_size_mm)));
+    o.sdf_dilation_voxels = std::max(o.sdf_dilation_voxels,
+                                     static_cast<int>(std::ceil(kCoarseBandMm / o.voxel_size_mm)));
   }
   return o;
 }
@@ -133,9 +148,11 @@ OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
   OwnedSchedule s;
   for (const double v : voxel_sizes_mm) {
     if (!(std::isfinite(v) && v > 0.0)) {
-      throw std::invalid_argument("BuildSchedule: voxel size " + std::to_string(v) + " must be > 0 mm");
+      throw std::invalid_argument("BuildSchedule: voxel size " + std::to_string(v) +
+                                  " must be > 0 mm");
     }
-    const collision::OracleOptions o = StageOracleOptions(base_options, voxel_sizes_mm, s.oracles.size());
+    const collision::OracleOptions o =
+        StageOracleOptions(base_options, voxel_sizes_mm, s.oracles.size());
     s.oracles.push_back(std::make_unique<collision::JawOracle>(lower_L, upper_U, o));
     s.stages.push_back({s.oracles.back().get(), collision::AccuracyLevel::kSubVoxel});
   }

@@ -27,21 +27,27 @@ struct Cluster {
 };
 
 std::uint64_t CellKey(const Eigen::Vector3d& p, double spacing) {
-  auto c = [&](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / spacing)) + (1 << 20)) & 0x1fffff; };
+  auto c = [&](double v) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / spacing)) +
+                                      (1 << 20)) &
+           0x1fffff;
+  };
   return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
 }
 
 }  // namespace
 
 SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU,
-                          const Eigen::Vector3d& occlusal_L, double spacing_mm, double crown_depth_mm) {
+                          const Eigen::Vector3d& occlusal_L, double spacing_mm,
+                          double crown_depth_mm) {
   const Eigen::Vector3d down_U = -(X_LU.linear().transpose() * occlusal_L).normalized();
   double lowest = -1e300;
   for (const auto& v : upper_U.vertices) lowest = std::max(lowest, v.dot(down_U));
   std::unordered_map<std::uint64_t, Cluster> cells;
   std::uint32_t next = 0;
   for (std::size_t t = 0; t < upper_U.num_triangles(); ++t) {
-    const Eigen::Vector3d a = upper_U.corner(t, 0), b = upper_U.corner(t, 1), c = upper_U.corner(t, 2);
+    const Eigen::Vector3d a = upper_U.corner(t, 0), b = upper_U.corner(t, 1),
+                          c = upper_U.corner(t, 2);
     const Eigen::Vector3d n = (b - a).cross(c - a);
     if (n.norm() <= 0.0 || n.normalized().dot(down_U) < -0.3) continue;
     if (lowest - (a + b + c).dot(down_U) / 3.0 > crown_depth_mm) continue;

@@ -51,7 +51,8 @@ struct Problem {
   Eigen::Isometry3d X_ref = Eigen::Isometry3d::Identity();  ///< the start pose
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();
   collision::ArchFrame arch;
-  Eigen::Vector3d settle_dir = Eigen::Vector3d::Zero();  ///< occlusal axis without locked components
+  Eigen::Vector3d settle_dir =
+      Eigen::Vector3d::Zero();  ///< occlusal axis without locked components
   Vector6d lower = Vector6d::Zero(), upper = Vector6d::Zero();  ///< bounds (locked: 0, 0)
   std::vector<Eigen::Vector3d> ref_points_U;
 };
@@ -70,8 +71,8 @@ ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& reque
 
 /// Evaluation of a sample set at a pose (fast, approximate: the solvers' objective).
 struct SetEvaluation {
-  double seat_cost = 0.0;      ///< the seat objective (SeatSampleCost summed; lower is better)
-  double smooth_score = 0.0;   ///< attraction-weighted area minus the bilateral penalty
+  double seat_cost = 0.0;     ///< the seat objective (SeatSampleCost summed; lower is better)
+  double smooth_score = 0.0;  ///< attraction-weighted area minus the bilateral penalty
   double contact_area_mm2 = 0.0;
   double robust_penetration_mm = 0.0;
   /// Smooth penetration excess: sqrt(sum a (depth - limit)+^2 / near-contact area), mm, over the
@@ -86,8 +87,8 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
                           const Eigen::Isometry3d& X_LU, const Problem& problem);
 /// Per sample of the set: in a spike patch at X_LU (see PenetrationPatch), so left out of the
 /// penetration penalty and measure.
-std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples, const Eigen::Isometry3d& X_LU,
-                               const Problem& problem);
+std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples,
+                               const Eigen::Isometry3d& X_LU, const Problem& problem);
 
 /// Moves x along the settle direction (within bounds) to where the penetration measure of
 /// the set just meets the limit: closes open jaws, opens nested ones.

@@ -24,8 +24,8 @@ ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& reque
   return s;
 }
 
-std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples, const Eigen::Isometry3d& X_LU,
-                               const Problem& problem) {
+std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples,
+                               const Eigen::Isometry3d& X_LU, const Problem& problem) {
   std::vector<bool> spike(samples.size(), false);
   const double cap = SpikePatchCap(*problem.request);
   if (cap <= 0.0) return spike;
@@ -41,9 +41,9 @@ std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& sample
       index.push_back(i);
     }
   }
-  const std::vector<bool> member = SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, cap,
-                                                          problem.request->max_penetration_mm,
-                                                          SpikeShallowMm(*problem.request));
+  const std::vector<bool> member =
+      SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, cap,
+                             problem.request->max_penetration_mm, SpikeShallowMm(*problem.request));
   for (std::size_t k = 0; k < pen.size(); ++k) spike[index[k]] = member[k];
   return spike;
 }
@@ -76,8 +76,9 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
   }
   std::vector<char> spike(n, 0);
   if (!pen.empty()) {
-    const std::vector<bool> member = SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req),
-                                                            req.max_penetration_mm, SpikeShallowMm(req));
+    const std::vector<bool> member =
+        SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req),
+                               req.max_penetration_mm, SpikeShallowMm(req));
     for (std::size_t k = 0; k < pen.size(); ++k) spike[pen_index[k]] = member[k] ? 1 : 0;
   }
   // Pass 2: costs and measures; spike samples are left out of the penalty and the measure.
@@ -117,7 +118,8 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
     }
     e.smooth_score += a * k;
     const Eigen::Vector3d rel = X_LU * samples.p_U[i] - problem.arch.origin_L;
-    if (req.bilateral_posterior_weight > 0.0 && rel.dot(problem.arch.anterior_L) <= problem.arch.anterior_split_mm) {
+    if (req.bilateral_posterior_weight > 0.0 &&
+        rel.dot(problem.arch.anterior_L) <= problem.arch.anterior_split_mm) {
       (rel.dot(problem.arch.lateral_L) >= 0.0 ? left : right) += a * k;
     }
   }
@@ -154,8 +156,8 @@ void SettleRange(const Problem& problem, const Vector6d& x, double* lo, double* 
 
 // Generic settle: `measure(h)` returns (penetration measure, smallest known distance).
 template <typename Measure>
-double SettleOffset(const Problem& problem, const Vector6d& x, Measure measure, double first_step_mm,
-                    double tolerance_mm) {
+double SettleOffset(const Problem& problem, const Vector6d& x, Measure measure,
+                    double first_step_mm, double tolerance_mm) {
   const double limit = problem.request->max_penetration_mm;
   double lo = 0.0, hi = 0.0;
   SettleRange(problem, x, &lo, &hi);
@@ -216,7 +218,8 @@ Vector6d SettleOnSet(const OracleStage& stage, const SampleSet& samples, const P
       problem, x,
       [&](double offset) {
         ++*evaluations;
-        const SetEvaluation e = EvaluateSet(stage, samples, PoseOf(problem, Offset(problem, x, offset)), problem);
+        const SetEvaluation e =
+            EvaluateSet(stage, samples, PoseOf(problem, Offset(problem, x, offset)), problem);
         return std::make_pair(e.robust_penetration_mm, e.min_distance_mm);
       },
       0.25, 0.003);
@@ -229,9 +232,11 @@ Vector6d SettleOnOracle(const OracleStage& stage, const Problem& problem, const 
       problem, x,
       [&](double offset) {
         ++*evaluations;
-        const PoseEvaluation e = EvaluatePose(stage, PoseOf(problem, Offset(problem, x, offset)), *problem.request);
+        const PoseEvaluation e =
+            EvaluatePose(stage, PoseOf(problem, Offset(problem, x, offset)), *problem.request);
         // Only step by known gaps within the oracle's reach.
-        return std::make_pair(e.constrained_penetration_mm, std::numeric_limits<double>::quiet_NaN());
+        return std::make_pair(e.constrained_penetration_mm,
+                              std::numeric_limits<double>::quiet_NaN());
       },
       0.02, 0.003);
   return Offset(problem, x, h);

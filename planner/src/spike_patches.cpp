@@ -21,7 +21,8 @@ std::uint64_t CellKey(const Eigen::Vector3i& c) {
 
 int Find(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
-    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    parent[static_cast<std::size_t>(i)] =
+        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
     i = parent[static_cast<std::size_t>(i)];
   }
   return i;
@@ -29,18 +30,21 @@ int Find(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSample>& samples, double link_mm,
-                                                 double max_spike_area_mm2) {
+std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSample>& samples,
+                                                 double link_mm, double max_spike_area_mm2) {
   const int n = static_cast<int>(samples.size());
   std::vector<int> parent(samples.size());
   std::iota(parent.begin(), parent.end(), 0);
   // Cells of size link_mm as a sorted (key, sample) list: no allocation per cell.
   auto cell_of = [&](const Eigen::Vector3d& p) {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / link_mm)), static_cast<int>(std::floor(p.y() / link_mm)),
+    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / link_mm)),
+                           static_cast<int>(std::floor(p.y() / link_mm)),
                            static_cast<int>(std::floor(p.z() / link_mm)));
   };
   std::vector<std::pair<std::uint64_t, int>> keyed(samples.size());
-  for (int i = 0; i < n; ++i) keyed[static_cast<std::size_t>(i)] = {CellKey(cell_of(samples[static_cast<std::size_t>(i)].p_L)), i};
+  for (int i = 0; i < n; ++i)
+    keyed[static_cast<std::size_t>(i)] = {
+        CellKey(cell_of(samples[static_cast<std::size_t>(i)].p_L)), i};
   std::sort(keyed.begin(), keyed.end());
   const double link2 = link_mm * link_mm;
   for (int i = 0; i < n; ++i) {
@@ -51,7 +55,8 @@ std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSa
       auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(key, 0));
       for (; it != keyed.end() && it->first == key; ++it) {
         const int j = it->second;
-        if (j <= i || (samples[static_cast<std::size_t>(j)].p_L - p).squaredNorm() > link2) continue;
+        if (j <= i || (samples[static_cast<std::size_t>(j)].p_L - p).squaredNorm() > link2)
+          continue;
         const int a = Find(parent, i), b = Find(parent, j);
         if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
       }
@@ -96,8 +101,9 @@ std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, do
   return spike;
 }
 
-std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples, double link_mm,
-                                         double max_spike_area_mm2, double limit_mm, double shallow_mm) {
+std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples,
+                                         double link_mm, double max_spike_area_mm2, double limit_mm,
+                                         double shallow_mm) {
   std::vector<bool> spike(samples.size(), false);
   if (max_spike_area_mm2 <= 0.0) return spike;
   double over_limit = 0.0;

@@ -19,7 +19,8 @@ using namespace occlude;
 
 int main(int argc, char** argv) {
   if (argc < 8) {
-    std::fprintf(stderr, "usage: %s <case folder> tx ty tz rx ry rz [voxel_mm] [steps] [s_max]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s <case folder> tx ty tz rx ry rz [voxel_mm] [steps] [s_max]\n",
+                 argv[0]);
     return 2;
   }
   const std::string dir = argv[1];
@@ -39,18 +40,22 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d X_ref = Eigen::Isometry3d::Identity();
     const auto points_U = planner::ArchReferencePoints_U(*upper, X_ref, arch);
     const Eigen::Vector3d pivot_L = X_ref * points_U[0];
-    const planner::PlanRequest request;  // defaults: band, penetration limit and measure of `propose`
-    std::printf("case %s, voxel %.2f mm sub-voxel, band %.2f mm, limit %.3f mm (robust measure)\n", dir.c_str(),
-                voxel, request.contact_band_mm, request.max_penetration_mm);
-    std::printf("pivot_L (%.3f %.3f %.3f), occlusal_L (%.3f %.3f %.3f)\n", pivot_L.x(), pivot_L.y(), pivot_L.z(),
-                arch.occlusal_L.x(), arch.occlusal_L.y(), arch.occlusal_L.z());
-    std::printf("    s  err_mm err_deg | as is: contact  post%%  maxpen  robust | settled: shift_mm contact  post%%  maxpen  robust\n");
+    const planner::PlanRequest
+        request;  // defaults: band, penetration limit and measure of `propose`
+    std::printf("case %s, voxel %.2f mm sub-voxel, band %.2f mm, limit %.3f mm (robust measure)\n",
+                dir.c_str(), voxel, request.contact_band_mm, request.max_penetration_mm);
+    std::printf("pivot_L (%.3f %.3f %.3f), occlusal_L (%.3f %.3f %.3f)\n", pivot_L.x(), pivot_L.y(),
+                pivot_L.z(), arch.occlusal_L.x(), arch.occlusal_L.y(), arch.occlusal_L.z());
+    std::printf(
+        "    s  err_mm err_deg | as is: contact  post%%  maxpen  robust | settled: shift_mm "
+        "contact  post%%  maxpen  robust\n");
     // The path to s_max: the pivot parameters scale linearly along EvaluatePath's path.
     planner::PoseParameters end;
     end.translation_mm = s_max * target.translation_mm;
     end.rotation_deg = s_max * target.rotation_deg;
-    const std::vector<planner::PathPoint> path = planner::EvaluatePath(
-        stage, X_ref, planner::ComposePose(end, pivot_L, X_ref), pivot_L, points_U, request, std::max(1, steps));
+    const std::vector<planner::PathPoint> path =
+        planner::EvaluatePath(stage, X_ref, planner::ComposePose(end, pivot_L, X_ref), pivot_L,
+                              points_U, request, std::max(1, steps));
     for (const planner::PathPoint& point : path) {
       const double s = s_max * point.s;
       const Eigen::Isometry3d& X = point.X_LU;
@@ -65,7 +70,9 @@ int main(int argc, char** argv) {
         Y.pretranslate(-c * arch.occlusal_L);
         return Y;
       };
-      auto ok = [&](double c) { return planner::EvaluatePose(stage, shifted(c), request).feasible; };
+      auto ok = [&](double c) {
+        return planner::EvaluatePose(stage, shifted(c), request).feasible;
+      };
       double lo = -1.0, hi = 1.0;  // lo feasible (open), hi infeasible
       while (!ok(lo) && lo > -4.0) lo -= 1.0;
       while (ok(hi) && hi < 4.0) hi += 1.0;
@@ -74,10 +81,12 @@ int main(int argc, char** argv) {
         (ok(mid) ? lo : hi) = mid;
       }
       const planner::PoseEvaluation settled = planner::EvaluatePose(stage, shifted(lo), request);
-      std::printf("%5.2f  %6.3f %7.3f | %13.2f %6.1f %7.3f %7.3f | %16.3f %7.2f %6.1f %7.3f %7.3f\n", s,
-                  e.translation_mm, e.rotation_deg, as_is.contact_area_mm2, 100.0 * as_is.posterior_share,
-                  as_is.max_penetration_mm, as_is.constrained_penetration_mm, lo, settled.contact_area_mm2,
-                  100.0 * settled.posterior_share, settled.max_penetration_mm, settled.constrained_penetration_mm);
+      std::printf(
+          "%5.2f  %6.3f %7.3f | %13.2f %6.1f %7.3f %7.3f | %16.3f %7.2f %6.1f %7.3f %7.3f\n", s,
+          e.translation_mm, e.rotation_deg, as_is.contact_area_mm2, 100.0 * as_is.posterior_share,
+          as_is.max_penetration_mm, as_is.constrained_penetration_mm, lo, settled.contact_area_mm2,
+          100.0 * settled.posterior_share, settled.max_penetration_mm,
+          settled.constrained_penetration_mm);
       std::fflush(stdout);
     }
   } catch (const std::exception& e) {

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <memory>
 #include <map>
+#include <memory>
 #include <numeric>
 
 #include "occlude/collision/signed_distance.h"
-
 #include "occlude/io/mesh_io.h"
 #include "occlude/planner/plan.h"
 
@@ -18,7 +17,8 @@ using namespace occlude;
 
 // Boundary flag per sample: is its closest point on `mesh` on a boundary edge (or a vertex
 // of one)? Brute force.
-static std::vector<bool> OnBoundary(const io::TriangleMesh& mesh, const std::vector<collision::SurfacePoint>& pts,
+static std::vector<bool> OnBoundary(const io::TriangleMesh& mesh,
+                                    const std::vector<collision::SurfacePoint>& pts,
                                     const Eigen::Isometry3d& X_meshFrame_ptsFrame) {
   std::map<std::pair<int, int>, int> edge_count;
   for (const auto& t : mesh.triangles) {
@@ -52,7 +52,8 @@ static std::vector<bool> OnBoundary(const io::TriangleMesh& mesh, const std::vec
   return out;
 }
 
-static void Patches(const std::vector<collision::SurfacePoint>& pts, const std::vector<bool>& boundary) {
+static void Patches(const std::vector<collision::SurfacePoint>& pts,
+                    const std::vector<bool>& boundary) {
   const std::size_t n = pts.size();
   std::vector<int> comp(n, -1);
   int nc = 0;
@@ -72,7 +73,11 @@ static void Patches(const std::vector<collision::SurfacePoint>& pts, const std::
     }
     ++nc;
   }
-  struct P { double depth = 0, area = 0; int count = 0, on_boundary = 0; Eigen::Vector3d c = Eigen::Vector3d::Zero(); };
+  struct P {
+    double depth = 0, area = 0;
+    int count = 0, on_boundary = 0;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  };
   std::vector<P> ps(nc);
   for (std::size_t i = 0; i < n; ++i) {
     P& p = ps[comp[i]];
@@ -85,8 +90,10 @@ static void Patches(const std::vector<collision::SurfacePoint>& pts, const std::
   std::sort(ps.begin(), ps.end(), [](const P& a, const P& b) { return a.depth > b.depth; });
   for (const P& p : ps) {
     const Eigen::Vector3d c = p.c / p.count;
-    std::printf("  patch depth %.3f mm area %.3f mm2 samples %d (%d closest to a boundary) at (%.1f %.1f %.1f)\n", p.depth, p.area, p.count, p.on_boundary,
-                c.x(), c.y(), c.z());
+    std::printf(
+        "  patch depth %.3f mm area %.3f mm2 samples %d (%d closest to a boundary) at (%.1f %.1f "
+        "%.1f)\n",
+        p.depth, p.area, p.count, p.on_boundary, c.x(), c.y(), c.z());
   }
 }
 
@@ -100,19 +107,20 @@ int main(int argc, char** argv) {
   o.voxel_size_mm = voxel;
   collision::JawOracle fwd(lower, upper, o), rev(upper, lower, o);
   const auto& a = fwd.arch();
-  std::printf("occlusal (%.3f %.3f %.3f) anterior (%.3f %.3f %.3f)\n", a.occlusal_L.x(), a.occlusal_L.y(),
-              a.occlusal_L.z(), a.anterior_L.x(), a.anterior_L.y(), a.anterior_L.z());
+  std::printf("occlusal (%.3f %.3f %.3f) anterior (%.3f %.3f %.3f)\n", a.occlusal_L.x(),
+              a.occlusal_L.y(), a.occlusal_L.z(), a.anterior_L.x(), a.anterior_L.y(),
+              a.anterior_L.z());
   collision::OracleRequest q;
   q.level = collision::AccuracyLevel::kExact;
   q.penetration_search_mm = 2.0;
   collision::OracleResult r;
   fwd.Query(Eigen::Isometry3d::Identity(), q, &r);
-  std::printf("upper in lower: max %.3f area %.3f deep %zu contact %.2f mm2\n", r.max_penetration_mm,
-              r.penetration_area_mm2, r.deep_samples, r.contact_area_mm2);
+  std::printf("upper in lower: max %.3f area %.3f deep %zu contact %.2f mm2\n",
+              r.max_penetration_mm, r.penetration_area_mm2, r.deep_samples, r.contact_area_mm2);
   Patches(r.penetrations, OnBoundary(*lower, r.penetrations, Eigen::Isometry3d::Identity()));
   rev.Query(Eigen::Isometry3d::Identity(), q, &r);
-  std::printf("lower in upper: max %.3f area %.3f deep %zu contact %.2f mm2\n", r.max_penetration_mm,
-              r.penetration_area_mm2, r.deep_samples, r.contact_area_mm2);
+  std::printf("lower in upper: max %.3f area %.3f deep %zu contact %.2f mm2\n",
+              r.max_penetration_mm, r.penetration_area_mm2, r.deep_samples, r.contact_area_mm2);
   Patches(r.penetrations, OnBoundary(*upper, r.penetrations, Eigen::Isometry3d::Identity()));
   return 0;
 }

@@ -20,7 +20,7 @@ struct BadInput {
   const char* name;
   Reads kind;  ///< kMeshes, kConfig, kPose or kOut
   std::function<void(const CommandForm&, Inputs*)> make;
-  std::string expected;                           ///< in the error line
+  std::string expected;                                  ///< in the error line
   std::map<std::string, std::string> expected_for = {};  ///< per command, instead
 };
 
@@ -34,7 +34,8 @@ void BadLower(Inputs* in, const std::string& name, const std::string& bytes) {
 std::string BoxBytes(const Inputs& in) { return WriteBox(in.dir / "box-source.stl"); }
 
 std::string WithCount(std::string stl, std::uint32_t count) {
-  for (int i = 0; i < 4; ++i) stl[80 + static_cast<std::size_t>(i)] = static_cast<char>((count >> (8 * i)) & 0xff);
+  for (int i = 0; i < 4; ++i)
+    stl[80 + static_cast<std::size_t>(i)] = static_cast<char>((count >> (8 * i)) & 0xff);
   return stl;
 }
 
@@ -47,7 +48,8 @@ std::string AsciiFacet(const std::string& vertex) {
 // Binary STL of the given triangles (9 floats each).
 std::string BinaryStl(const std::vector<std::array<float, 9>>& triangles) {
   std::string stl(80, ' ');
-  stl += WithCount(std::string(84, '\0'), static_cast<std::uint32_t>(triangles.size())).substr(80, 4);
+  stl +=
+      WithCount(std::string(84, '\0'), static_cast<std::uint32_t>(triangles.size())).substr(80, 4);
   for (const auto& t : triangles) {
     stl += std::string(12, '\0');  // normal (ignored)
     for (const float f : t) stl.append(reinterpret_cast<const char*>(&f), 4);
@@ -60,14 +62,19 @@ std::vector<BadInput> MeshInputs() {
   return {
       {"empty_file", kMeshes, [](const CommandForm&, Inputs* in) { BadLower(in, "empty.stl", ""); },
        "the file is empty (0 bytes)"},
-      {"folder_as_mesh", kMeshes,
+      {"folder_as_mesh",
+       kMeshes,
        [](const CommandForm&, Inputs* in) {
          in->lower = in->dir / "folder.stl";
          fs::create_directory(in->lower);
        },
-       "is a folder", {{"report", "lower.file: '"}}},
-      {"missing_file", kMeshes, [](const CommandForm&, Inputs* in) { in->lower = in->dir / "nope.stl"; },
-       "no such file", {{"report", "lower.file: no such file"}, {"bench", "not found"}}},
+       "is a folder",
+       {{"report", "lower.file: '"}}},
+      {"missing_file",
+       kMeshes,
+       [](const CommandForm&, Inputs* in) { in->lower = in->dir / "nope.stl"; },
+       "no such file",
+       {{"report", "lower.file: no such file"}, {"bench", "not found"}}},
       {"unreadable_file", kMeshes,
        [](const CommandForm&, Inputs* in) {
          BadLower(in, "secret.stl", BoxBytes(*in));
@@ -76,19 +83,30 @@ std::vector<BadInput> MeshInputs() {
        },
        "cannot open for reading: Permission denied; check the file's permissions"},
       {"truncated_binary_stl", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "cut.stl", BoxBytes(*in).substr(0, 664)); },
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "cut.stl", BoxBytes(*in).substr(0, 664));
+       },
        "needs 684 bytes, but the file has 664 bytes; the file is truncated"},
       {"huge_claimed_count", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "huge.stl", WithCount(BoxBytes(*in), 4000000000u)); },
-       "header says 4000000000 triangles, which needs 200000000084 bytes, but the file has 684 bytes"},
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "huge.stl", WithCount(BoxBytes(*in), 4000000000u));
+       },
+       "header says 4000000000 triangles, which needs 200000000084 bytes, but the file has 684 "
+       "bytes"},
       {"ascii_stl_nan", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "nan.stl", AsciiFacet("vertex 10 nan 0")); },
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "nan.stl", AsciiFacet("vertex 10 nan 0"));
+       },
        "line 5: non-finite vertex coordinate 'nan'"},
       {"ascii_stl_inf", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "inf.stl", AsciiFacet("vertex -inf 0 0")); },
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "inf.stl", AsciiFacet("vertex -inf 0 0"));
+       },
        "line 5: non-finite vertex coordinate '-inf'"},
       {"ascii_stl_garbage", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "abc.stl", AsciiFacet("vertex 10 abc 0")); },
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "abc.stl", AsciiFacet("vertex 10 abc 0"));
+       },
        "line 5: 'abc' is not a number"},
       {"ascii_stl_missing_endloop", kMeshes,
        [](const CommandForm&, Inputs* in) {
@@ -98,17 +116,22 @@ std::vector<BadInput> MeshInputs() {
        },
        "line 7: expected 'endloop' in facet 1, found 'endfacet'"},
       {"obj_index_out_of_range", kMeshes,
-       [](const CommandForm&, Inputs* in) { BadLower(in, "range.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 7\n"); },
+       [](const CommandForm&, Inputs* in) {
+         BadLower(in, "range.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 7\n");
+       },
        "line 4: a face refers to vertex 7 but the file has only 3 vertices"},
       {"only_degenerate_triangles", kMeshes,
        [](const CommandForm&, Inputs* in) {
-         BadLower(in, "flat.stl", BinaryStl({{0, 0, 0, 1, 1, 1, 2, 2, 2}, {0, 0, 0, 0, 0, 0, 5, 5, 5}}));
+         BadLower(in, "flat.stl",
+                  BinaryStl({{0, 0, 0, 1, 1, 1, 2, 2, 2}, {0, 0, 0, 0, 0, 0, 5, 5, 5}}));
        },
        "all 2 triangles are degenerate (zero area)"},
       // Two small triangles 10 km apart: little memory, but no grid at 0.8 mm spans them.
       {"grid_overflow", kMeshes,
        [](const CommandForm&, Inputs* in) {
-         BadLower(in, "far.stl", BinaryStl({{0, 0, 0, 10, 0, 0, 0, 10, 0}, {1e7f, 0, 0, 1e7f + 10, 0, 0, 1e7f, 10, 0}}));
+         BadLower(in, "far.stl",
+                  BinaryStl(
+                      {{0, 0, 0, 10, 0, 0, 0, 10, 0}, {1e7f, 0, 0, 1e7f + 10, 0, 0, 1e7f, 10, 0}}));
        },
        "voxel grid too large: the mesh spans 1e+07 mm"},
       // Coordinates of 10^12 mm: no voxel size the commands accept can hold the grid.
@@ -126,17 +149,23 @@ void Append(Inputs* in, const std::string& text) { in->config += text; }
 
 std::vector<BadInput> ConfigInputs() {
   return {
-      {"unknown_key", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nbnd_mm = 0.1\n"); },
+      {"unknown_key", kConfig,
+       [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nbnd_mm = 0.1\n"); },
        ":8: contact.bnd_mm: unknown key; did you mean 'contact.band_mm'?"},
-      {"wrong_type", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nband_mm = \"wide\"\n"); },
+      {"wrong_type", kConfig,
+       [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nband_mm = \"wide\"\n"); },
        "contact.band_mm: must be a band in mm in (0, 5], got a string"},
-      {"zero_voxel", kConfig, [](const CommandForm&, Inputs* in) { Replace(&in->config, "0.8", "0"); },
+      {"zero_voxel", kConfig,
+       [](const CommandForm&, Inputs* in) { Replace(&in->config, "0.8", "0"); },
        "accuracy.voxel_mm: must be a positive voxel size in mm, at most 5, got 0"},
-      {"negative_voxel", kConfig, [](const CommandForm&, Inputs* in) { Replace(&in->config, "0.8", "-0.2"); },
+      {"negative_voxel", kConfig,
+       [](const CommandForm&, Inputs* in) { Replace(&in->config, "0.8", "-0.2"); },
        "accuracy.voxel_mm: must be a positive voxel size in mm, at most 5, got -0.2"},
-      {"band_over_5mm", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nband_mm = 6\n"); },
+      {"band_over_5mm", kConfig,
+       [](const CommandForm&, Inputs* in) { Append(in, "[contact]\nband_mm = 6\n"); },
        "contact.band_mm: must be a band in mm in (0, 5], got 6"},
-      {"bounds_min_over_max", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[bounds]\ntx_mm = [2, -2]\n"); },
+      {"bounds_min_over_max", kConfig,
+       [](const CommandForm&, Inputs* in) { Append(in, "[bounds]\ntx_mm = [2, -2]\n"); },
        "bounds.tx_mm: min 2 is greater than max -2"},
       {"all_dofs_locked", kConfig,
        [](const CommandForm&, Inputs* in) {
@@ -144,15 +173,22 @@ std::vector<BadInput> ConfigInputs() {
        },
        "bounds.locked: all six degrees of freedom are locked; leave at least one free"},
       {"missing_mesh_path", kConfig,
-       [](const CommandForm&, Inputs* in) { Replace(&in->config, "{lower}", (in->dir / "gone.stl").string()); },
+       [](const CommandForm&, Inputs* in) {
+         Replace(&in->config, "{lower}", (in->dir / "gone.stl").string());
+       },
        "lower.file: no such file"},
       {"no_lower_jaw", kConfig,
-       [](const CommandForm&, Inputs* in) { Replace(&in->config, "[lower]\nfile = \"{lower}\"\n", ""); },
+       [](const CommandForm&, Inputs* in) {
+         Replace(&in->config, "[lower]\nfile = \"{lower}\"\n", "");
+       },
        "lower: missing; give [lower] and [upper]"},
-      {"bad_memory_budget", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[limits]\nmemory_budget_mb = -5\n"); },
+      {"bad_memory_budget", kConfig,
+       [](const CommandForm&, Inputs* in) { Append(in, "[limits]\nmemory_budget_mb = -5\n"); },
        "limits.memory_budget_mb: must be a positive number of megabytes"},
-      {"not_toml", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[contact\n"); }, "not valid TOML"},
-      {"empty_config", kConfig, [](const CommandForm&, Inputs* in) { in->config.clear(); }, "lower: missing"},
+      {"not_toml", kConfig, [](const CommandForm&, Inputs* in) { Append(in, "[contact\n"); },
+       "not valid TOML"},
+      {"empty_config", kConfig, [](const CommandForm&, Inputs* in) { in->config.clear(); },
+       "lower: missing"},
       {"config_is_folder", kConfig,
        [](const CommandForm&, Inputs* in) {
          in->config_file = in->dir / "folder.toml";
@@ -160,7 +196,8 @@ std::vector<BadInput> ConfigInputs() {
          fs::create_directory(in->config_file);
        },
        "is a folder; give the case's .toml file"},
-      {"missing_config", kConfig, [](const CommandForm&, Inputs* in) {
+      {"missing_config", kConfig,
+       [](const CommandForm&, Inputs* in) {
          in->config_file = in->dir / "nope.toml";
          in->write_config = false;
        },
@@ -175,8 +212,8 @@ std::vector<BadInput> ConfigInputs() {
       {"output_folder_not_writable", kConfig,
        [](const CommandForm&, Inputs* in) {
          fs::create_directory(in->dir / "ro");
-         fs::permissions(in->dir / "ro", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::others_read |
-                                             fs::perms::others_exec);
+         fs::permissions(in->dir / "ro", fs::perms::owner_read | fs::perms::owner_exec |
+                                             fs::perms::others_read | fs::perms::others_exec);
          Append(in, "[output]\nfolder = \"ro/report\"\n");
          in->out_from_config = true;
          in->unprivileged = true;
@@ -195,33 +232,46 @@ void Pose(Inputs* in, const std::string& json) { std::ofstream(in->pose, std::io
 std::vector<BadInput> OtherInputs() {
   return {
       {"pose_not_rigid", kPose,
-       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"); },
+       [](const CommandForm&, Inputs* in) {
+         Pose(in, R"({"X_LU": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})");
+       },
        "rotation part is not orthonormal"},
       {"pose_reflection", kPose,
-       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"); },
+       [](const CommandForm&, Inputs* in) {
+         Pose(in, R"({"X_LU": [[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})");
+       },
        "rotation part is a reflection"},
       {"pose_nan", kPose,
-       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[NaN,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"); },
+       [](const CommandForm&, Inputs* in) {
+         Pose(in, R"({"X_LU": [[NaN,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})");
+       },
        "not valid JSON"},
       {"pose_overflow", kPose,
-       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[1e999,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"); },
+       [](const CommandForm&, Inputs* in) {
+         Pose(in, R"({"X_LU": [[1e999,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})");
+       },
        "not valid JSON"},
       {"pose_null_entry", kPose,
-       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[null,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"); },
+       [](const CommandForm&, Inputs* in) {
+         Pose(in, R"({"X_LU": [[null,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})");
+       },
        "\"X_LU\" has a non-number entry"},
-      {"pose_not_4x4", kPose, [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[1,0,0],[0,1,0],[0,0,1]]})"); },
+      {"pose_not_4x4", kPose,
+       [](const CommandForm&, Inputs* in) { Pose(in, R"({"X_LU": [[1,0,0],[0,1,0],[0,0,1]]})"); },
        "\"X_LU\" is not a 4x4 array"},
-      {"pose_missing", kPose, [](const CommandForm&, Inputs* in) { in->pose = in->dir / "nope.json"; },
+      {"pose_missing", kPose,
+       [](const CommandForm&, Inputs* in) { in->pose = in->dir / "nope.json"; },
        "cannot open the pose file"},
       {"out_not_writable", kOut,
        [](const CommandForm&, Inputs* in) {
          fs::create_directory(in->out);
-         fs::permissions(in->out, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::others_read |
-                                      fs::perms::others_exec);
+         fs::permissions(in->out, fs::perms::owner_read | fs::perms::owner_exec |
+                                      fs::perms::others_read | fs::perms::others_exec);
          in->unprivileged = true;
        },
        "output folder is not writable; choose a writable --out"},
-      {"out_is_a_file", kOut, [](const CommandForm&, Inputs* in) { std::ofstream(in->out) << "keep me\n"; },
+      {"out_is_a_file", kOut,
+       [](const CommandForm&, Inputs* in) { std::ofstream(in->out) << "keep me\n"; },
        "output path exists and is not a folder"},
       {"memory_budget_exceeded_option", kOut,
        [](const CommandForm&, Inputs* in) { in->extra = "--memory-budget-mb 1"; },
@@ -256,7 +306,8 @@ std::vector<BadRun> AllBadRuns() {
 std::string Named(const BadRun& run, const Inputs& in) {
   switch (run.input.kind) {
     case kMeshes:
-      return (run.command.reads & kCaseFolder) != 0 ? "bench-case/lower.stl" : in.lower.filename().string();
+      return (run.command.reads & kCaseFolder) != 0 ? "bench-case/lower.stl"
+                                                    : in.lower.filename().string();
     case kConfig:
       return in.config_file.filename().string();
     case kPose:
@@ -267,7 +318,9 @@ std::string Named(const BadRun& run, const Inputs& in) {
 }
 
 // For gtest's messages: the name, not the bytes.
-void PrintTo(const BadRun& run, std::ostream* os) { *os << run.command.name << " / " << run.input.name; }
+void PrintTo(const BadRun& run, std::ostream* os) {
+  *os << run.command.name << " / " << run.input.name;
+}
 
 class BadInputTest : public ::testing::TestWithParam<BadRun> {};
 
@@ -286,12 +339,15 @@ TEST_P(BadInputTest, OneErrorLineNamingItNonZeroExitNoFileWritten) {
   const std::string expected = it != run.input.expected_for.end() ? it->second : run.input.expected;
   const std::vector<std::string> lines = Lines(r.output);
   std::size_t error_lines = 0;
-  for (const std::string& line : lines) error_lines += line.find("error") != std::string::npos ? 1 : 0;
+  for (const std::string& line : lines)
+    error_lines += line.find("error") != std::string::npos ? 1 : 0;
   EXPECT_EQ(error_lines, 1u) << r.output;
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines.back().rfind("occlude: error: ", 0), 0u) << r.output;
-  EXPECT_NE(lines.back().find(expected), std::string::npos) << "expected: " << expected << "\n" << r.output;
-  EXPECT_NE(lines.back().find(Named(run, in)), std::string::npos) << "does not name " << Named(run, in);
+  EXPECT_NE(lines.back().find(expected), std::string::npos) << "expected: " << expected << "\n"
+                                                            << r.output;
+  EXPECT_NE(lines.back().find(Named(run, in)), std::string::npos)
+      << "does not name " << Named(run, in);
   // Writable again, so that the listing (and the clean-up) see everything.
   std::error_code ec;
   for (const fs::path& p : {in.out, in.dir / "ro", in.lower, in.config_file}) {
@@ -314,7 +370,8 @@ TEST(MemoryGuardTest, TheSuggestedVoxelSizeRuns) {
   const CommandRun refused = Occlude("collide" + jaws + " --voxel 0.05");
   ASSERT_NE(refused.exit_code, 0) << refused.output;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(refused.output, m, std::regex("the smallest voxel size that fits is about ([0-9.]+) mm")))
+  ASSERT_TRUE(std::regex_search(
+      refused.output, m, std::regex("the smallest voxel size that fits is about ([0-9.]+) mm")))
       << refused.output;
   const double fits = std::stod(m[1]);
   EXPECT_GT(fits, 0.05);

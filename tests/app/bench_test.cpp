@@ -72,9 +72,9 @@ std::pair<int, int> PngSize(const std::string& bytes) {
 
 TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColumns) {
   TempDir tmp;
-  const CommandRun r =
-      Occlude("bench --synthetic 5000 --voxel 0.8,0.4 --reps 1 --rounds 2 --offsets 1,0,-0.1 --out " +
-              (tmp / "out").string());
+  const CommandRun r = Occlude(
+      "bench --synthetic 5000 --voxel 0.8,0.4 --reps 1 --rounds 2 --offsets 1,0,-0.1 --out " +
+      (tmp / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string header = ReadText(tmp / "out" / "bench.csv").substr(0, 200);
   EXPECT_EQ(header.rfind(
@@ -140,7 +140,8 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
     std::map<std::string, double> fcl_us;  // "obb:boolean@0.000" -> median
     for (const auto& row : rows) {
       if (row.at("method") == "fcl" && row.at("query") != "build") {
-        fcl_us[row.at("variant") + ":" + row.at("query") + "@" + row.at("offset_mm")] = std::stod(row.at("median_us"));
+        fcl_us[row.at("variant") + ":" + row.at("query") + "@" + row.at("offset_mm")] =
+            std::stod(row.at("median_us"));
       }
     }
     for (const auto& row : rows) {
@@ -152,7 +153,8 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
         const double ratio = fcl_us.at(row.at("fcl_reference") + "@" + row.at("offset_mm")) /
                              std::stod(row.at("median_us"));
         // Printed with 2 decimals (the medians too): equal within that rounding.
-        EXPECT_NEAR(std::stod(row.at("speedup_vs_fcl")), ratio, 0.006 + 0.01 * ratio) << row.at("query");
+        EXPECT_NEAR(std::stod(row.at("speedup_vs_fcl")), ratio, 0.006 + 0.01 * ratio)
+            << row.at("query");
       }
       if (row.at("method") == "fcl" && row.at("query") == "boolean") {
         EXPECT_EQ(row.at("pairs"), row.at("offset_mm") == "1.000" ? "0" : "1")
@@ -298,7 +300,8 @@ TEST(BenchPosesTest, HapticTrajectoryDescendsThenSlidesAtTheContactHeight) {
 
 TEST(ChartTest, LongSubtitlesWrapAtSpacesWithinTheWidth) {
   const std::string text =
-      "a-bite-3shape | 2 cores (AMD EPYC), load 6.20 at start | one core per run | success: within 0.3 mm "
+      "a-bite-3shape | 2 cores (AMD EPYC), load 6.20 at start | one core per run | success: within "
+      "0.3 mm "
       "and 1 deg of the reference; dashed: of the runs' consensus";
   const int width = 600;
   const std::vector<std::string> lines = app::WrapChartText(text, 0.45, width);
@@ -312,7 +315,8 @@ TEST(ChartTest, LongSubtitlesWrapAtSpacesWithinTheWidth) {
   EXPECT_EQ(app::WrapChartText("short", 0.45, width), std::vector<std::string>{"short"});
   EXPECT_TRUE(app::WrapChartText("", 0.45, width).empty());
   const std::string word(200, 'w');  // wider than the width: alone on its line, not cut
-  EXPECT_EQ(app::WrapChartText("a " + word + " b", 0.45, width), (std::vector<std::string>{"a", word, "b"}));
+  EXPECT_EQ(app::WrapChartText("a " + word + " b", 0.45, width),
+            (std::vector<std::string>{"a", word, "b"}));
 }
 
 TEST(ChartTest, RendersAPngOfTheRequestedSizeAndRejectsAnEmptyChart) {

@@ -2,14 +2,15 @@
 // against the file's folder, the example configs valid, and every kind of bad
 // input rejected with one line naming the file, the key (with its table path)
 // and the fix, unknown keys with the closest valid key.
+#include "case_config.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "case_config.h"
-#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
+#include "user_error.h"
 
 namespace occlude::test {
 namespace {
@@ -17,7 +18,8 @@ namespace {
 using app::CaseConfig;
 
 std::filesystem::path ExamplesDir() {
-  return std::filesystem::weakly_canonical(std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "examples");
+  return std::filesystem::weakly_canonical(std::filesystem::path(__FILE__).parent_path() / ".." /
+                                           ".." / "examples");
 }
 
 // A temporary folder with meshes/lower.stl, meshes/upper.stl and meshes/Tooth_14.stl.
@@ -48,7 +50,8 @@ class CaseConfigTest : public ::testing::Test {
   TempDir tmp_;
 };
 
-const std::string kFiles = "[lower]\nfile = \"meshes/lower.stl\"\n[upper]\nfile = \"meshes/upper.stl\"\n";
+const std::string kFiles =
+    "[lower]\nfile = \"meshes/lower.stl\"\n[upper]\nfile = \"meshes/upper.stl\"\n";
 
 TEST_F(CaseConfigTest, DefaultsWithOnlyTheMeshes) {
   const CaseConfig c = Load(kFiles);
@@ -165,12 +168,15 @@ TEST_F(CaseConfigTest, RelativePathsResolveAgainstTheConfigFolder) {
 }
 
 TEST_F(CaseConfigTest, StartPoseFromMatrixOrParameters) {
-  const CaseConfig m = Load(kFiles + "[start]\nmatrix = [[0,-1,0,1],[1,0,0,2],[0,0,1,3],[0,0,0,1]]\n");
+  const CaseConfig m =
+      Load(kFiles + "[start]\nmatrix = [[0,-1,0,1],[1,0,0,2],[0,0,1,3],[0,0,0,1]]\n");
   const Eigen::Isometry3d X = app::StartPoseOf(m, Eigen::Vector3d(5, 5, 5));
   EXPECT_NEAR(X.translation().y(), 2.0, kExactMm);
   EXPECT_NEAR(X.linear()(1, 0), 1.0, kExactMm);
   const CaseConfig p = Load(kFiles + "[start]\ntranslation_mm = [0, -0.2, 0]\n");
-  EXPECT_TRUE(app::StartPoseOf(p, Eigen::Vector3d(5, 5, 5)).translation().isApprox(Eigen::Vector3d(0, -0.2, 0)));
+  EXPECT_TRUE(app::StartPoseOf(p, Eigen::Vector3d(5, 5, 5))
+                  .translation()
+                  .isApprox(Eigen::Vector3d(0, -0.2, 0)));
 }
 
 TEST_F(CaseConfigTest, SyntheticSource) {
@@ -189,7 +195,8 @@ TEST(CaseConfigEditDistance, Levenshtein) {
 }
 
 TEST(CaseConfigExamples, EveryExampleLoads) {
-  const bool have_data = SharedCase("a-bite-3shape").has_value() && SharedCase("b-open-3shape").has_value();
+  const bool have_data =
+      SharedCase("a-bite-3shape").has_value() && SharedCase("b-open-3shape").has_value();
   for (const char* name : {"synthetic.toml", "a-bite-3shape.toml", "a-bite-3shape-teeth.toml",
                            "b-open-3shape.toml", "c1-ios.toml"}) {
     if (std::string(name) != "synthetic.toml" && !have_data) continue;
@@ -218,70 +225,125 @@ TEST_P(CaseConfigBadTest, OneLineErrorNamingTheKey) {
   const std::string message = ErrorOf(GetParam().text);
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   EXPECT_NE(message.find("case.toml"), std::string::npos) << message;
-  for (const auto& e : GetParam().expected) EXPECT_NE(message.find(e), std::string::npos) << message;
+  for (const auto& e : GetParam().expected)
+    EXPECT_NE(message.find(e), std::string::npos) << message;
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, CaseConfigBadTest,
     ::testing::Values(
-        BadConfig{"unknown_key", kFiles + "[contact]\nband = 0.1\n",
+        BadConfig{"unknown_key",
+                  kFiles + "[contact]\nband = 0.1\n",
                   {"contact.band: unknown key", "did you mean 'contact.band_mm'"}},
-        BadConfig{"unknown_key_at_root", "band_mm = 0.1\n" + kFiles, {"band_mm: unknown key", "'contact.band_mm'"}},
-        BadConfig{"unknown_table", kFiles + "[contacts]\nband_mm = 0.1\n", {"contacts: unknown key", "'contact'"}},
-        BadConfig{"unknown_solver_key", kFiles + "[solver]\nstart = 3\n", {"solver.start", "'solver.starts'"}},
-        BadConfig{"wrong_type", kFiles + "[contact]\nband_mm = \"wide\"\n",
+        BadConfig{"unknown_key_at_root",
+                  "band_mm = 0.1\n" + kFiles,
+                  {"band_mm: unknown key", "'contact.band_mm'"}},
+        BadConfig{"unknown_table",
+                  kFiles + "[contacts]\nband_mm = 0.1\n",
+                  {"contacts: unknown key", "'contact'"}},
+        BadConfig{"unknown_solver_key",
+                  kFiles + "[solver]\nstart = 3\n",
+                  {"solver.start", "'solver.starts'"}},
+        BadConfig{"wrong_type",
+                  kFiles + "[contact]\nband_mm = \"wide\"\n",
                   {"contact.band_mm: must be a band in mm in (0, 5]", "got a string"}},
         BadConfig{"table_expected", "contact = 3\n" + kFiles, {"contact: must be a table"}},
-        BadConfig{"integer_expected", kFiles + "[solver]\nstarts = 2.5\n", {"solver.starts: must be an integer"}},
-        BadConfig{"zero_voxel", kFiles + "[accuracy]\nvoxel_mm = 0\n", {"accuracy.voxel_mm", "positive", "got 0"}},
-        BadConfig{"negative_voxel", kFiles + "[accuracy]\nvoxel_mm = -0.2\n", {"accuracy.voxel_mm", "positive"}},
-        BadConfig{"band_over_5mm", kFiles + "[contact]\nband_mm = 6\n", {"contact.band_mm", "(0, 5]", "got 6"}},
+        BadConfig{"integer_expected",
+                  kFiles + "[solver]\nstarts = 2.5\n",
+                  {"solver.starts: must be an integer"}},
+        BadConfig{"zero_voxel",
+                  kFiles + "[accuracy]\nvoxel_mm = 0\n",
+                  {"accuracy.voxel_mm", "positive", "got 0"}},
+        BadConfig{"negative_voxel",
+                  kFiles + "[accuracy]\nvoxel_mm = -0.2\n",
+                  {"accuracy.voxel_mm", "positive"}},
+        BadConfig{"band_over_5mm",
+                  kFiles + "[contact]\nband_mm = 6\n",
+                  {"contact.band_mm", "(0, 5]", "got 6"}},
         BadConfig{"zero_band", kFiles + "[contact]\nband_mm = 0\n", {"contact.band_mm", "(0, 5]"}},
-        BadConfig{"negative_penetration", kFiles + "[contact]\nmax_penetration_mm = -0.1\n",
+        BadConfig{"negative_penetration",
+                  kFiles + "[contact]\nmax_penetration_mm = -0.1\n",
                   {"contact.max_penetration_mm", "[0, 5]"}},
-        BadConfig{"min_over_max", kFiles + "[bounds]\ntx_mm = [2, -2]\n",
+        BadConfig{"min_over_max",
+                  kFiles + "[bounds]\ntx_mm = [2, -2]\n",
                   {"bounds.tx_mm", "min 2 is greater than max -2"}},
-        BadConfig{"bounds_not_a_pair", kFiles + "[bounds]\nrx_deg = [1]\n", {"bounds.rx_deg", "[min, max]"}},
-        BadConfig{"all_locked", kFiles + "[bounds]\nlocked = [\"tx\",\"ty\",\"tz\",\"rx\",\"ry\",\"rz\"]\n",
+        BadConfig{"bounds_not_a_pair",
+                  kFiles + "[bounds]\nrx_deg = [1]\n",
+                  {"bounds.rx_deg", "[min, max]"}},
+        BadConfig{"all_locked",
+                  kFiles + "[bounds]\nlocked = [\"tx\",\"ty\",\"tz\",\"rx\",\"ry\",\"rz\"]\n",
                   {"bounds.locked", "all six", "leave at least one free"}},
-        BadConfig{"unknown_dof", kFiles + "[bounds]\nlocked = [\"rzz\"]\n", {"bounds.locked", "'rzz'", "'rz'"}},
-        BadConfig{"missing_mesh", "[lower]\nfile = \"meshes/nope.stl\"\n[upper]\nfile = \"meshes/upper.stl\"\n",
+        BadConfig{"unknown_dof",
+                  kFiles + "[bounds]\nlocked = [\"rzz\"]\n",
+                  {"bounds.locked", "'rzz'", "'rz'"}},
+        BadConfig{"missing_mesh",
+                  "[lower]\nfile = \"meshes/nope.stl\"\n[upper]\nfile = \"meshes/upper.stl\"\n",
                   {"lower.file: no such file", "meshes/nope.stl"}},
-        BadConfig{"missing_part", "[lower]\nfile = \"meshes/lower.stl\"\n[upper]\nparts = [\"meshes/Tooth_14.stl\", \"meshes/Tooth_9.stl\"]\n",
+        BadConfig{"missing_part",
+                  "[lower]\nfile = \"meshes/lower.stl\"\n[upper]\nparts = "
+                  "[\"meshes/Tooth_14.stl\", \"meshes/Tooth_9.stl\"]\n",
                   {"upper.parts[1]: no such file", "Tooth_9.stl"}},
-        BadConfig{"folder_as_mesh", "[lower]\nfile = \"meshes\"\n[upper]\nfile = \"meshes/upper.stl\"\n",
+        BadConfig{"folder_as_mesh",
+                  "[lower]\nfile = \"meshes\"\n[upper]\nfile = \"meshes/upper.stl\"\n",
                   {"lower.file", "is not a file"}},
-        BadConfig{"file_and_parts", "[lower]\nfile = \"meshes/lower.stl\"\nparts = [\"meshes/lower.stl\"]\n[upper]\nfile = \"meshes/upper.stl\"\n",
+        BadConfig{"file_and_parts",
+                  "[lower]\nfile = \"meshes/lower.stl\"\nparts = "
+                  "[\"meshes/lower.stl\"]\n[upper]\nfile = \"meshes/upper.stl\"\n",
                   {"[lower]", "exactly one of file"}},
         BadConfig{"no_meshes", "[contact]\nband_mm = 0.1\n", {"lower: missing", "[synthetic]"}},
-        BadConfig{"synthetic_and_files", kFiles + "[synthetic]\ntriangles = 5000\n", {"synthetic", "not both"}},
-        BadConfig{"synthetic_budget", "[synthetic]\ntriangles = 10\n", {"synthetic.triangles", "[5000, 500000]"}},
-        BadConfig{"non_rigid_matrix", kFiles + "[start]\nmatrix = [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
+        BadConfig{"synthetic_and_files",
+                  kFiles + "[synthetic]\ntriangles = 5000\n",
+                  {"synthetic", "not both"}},
+        BadConfig{"synthetic_budget",
+                  "[synthetic]\ntriangles = 10\n",
+                  {"synthetic.triangles", "[5000, 500000]"}},
+        BadConfig{"non_rigid_matrix",
+                  kFiles + "[start]\nmatrix = [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
                   {"start.matrix", "not orthonormal"}},
-        BadConfig{"nan_matrix", kFiles + "[start]\nmatrix = [[nan,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
+        BadConfig{"nan_matrix",
+                  kFiles + "[start]\nmatrix = [[nan,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
                   {"start.matrix", "NaN"}},
-        BadConfig{"matrix_not_4x4", kFiles + "[start]\nmatrix = [[1,0,0],[0,1,0],[0,0,1]]\n", {"start.matrix", "4x4"}},
-        BadConfig{"matrix_and_translation", kFiles + "[start]\ntranslation_mm = [0,0,0]\nmatrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
+        BadConfig{"matrix_not_4x4",
+                  kFiles + "[start]\nmatrix = [[1,0,0],[0,1,0],[0,0,1]]\n",
+                  {"start.matrix", "4x4"}},
+        BadConfig{"matrix_and_translation",
+                  kFiles + "[start]\ntranslation_mm = [0,0,0]\nmatrix = "
+                           "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
                   {"start.matrix", "not both"}},
-        BadConfig{"translation_not_3", kFiles + "[start]\ntranslation_mm = [0, 1]\n", {"start.translation_mm", "[x, y, z]"}},
-        BadConfig{"bad_units", kFiles + "[case]\nunits = \"furlong\"\n", {"case.units", "furlong", "mm, cm"}},
-        BadConfig{"bad_up_axis", kFiles + "[case]\nup_axis = \"w\"\n", {"case.up_axis", "not an axis"}},
-        BadConfig{"region_of_interest_not_bool", kFiles + "[accuracy]\nregion_of_interest = 1\n",
+        BadConfig{"translation_not_3",
+                  kFiles + "[start]\ntranslation_mm = [0, 1]\n",
+                  {"start.translation_mm", "[x, y, z]"}},
+        BadConfig{"bad_units",
+                  kFiles + "[case]\nunits = \"furlong\"\n",
+                  {"case.units", "furlong", "mm, cm"}},
+        BadConfig{
+            "bad_up_axis", kFiles + "[case]\nup_axis = \"w\"\n", {"case.up_axis", "not an axis"}},
+        BadConfig{"region_of_interest_not_bool",
+                  kFiles + "[accuracy]\nregion_of_interest = 1\n",
                   {"accuracy.region_of_interest", "true or false"}},
-        BadConfig{"region_of_interest_misspelt", kFiles + "[accuracy]\nregion_of_intrest = false\n",
+        BadConfig{"region_of_interest_misspelt",
+                  kFiles + "[accuracy]\nregion_of_intrest = false\n",
                   {"accuracy.region_of_intrest: unknown key", "'accuracy.region_of_interest'"}},
-        BadConfig{"memory_budget_not_positive", kFiles + "[limits]\nmemory_budget_mb = 0\n",
+        BadConfig{"memory_budget_not_positive",
+                  kFiles + "[limits]\nmemory_budget_mb = 0\n",
                   {"limits.memory_budget_mb", "positive number of megabytes"}},
-        BadConfig{"unknown_limit", kFiles + "[limits]\nmemory_mb = 10\n",
+        BadConfig{"unknown_limit",
+                  kFiles + "[limits]\nmemory_mb = 10\n",
                   {"limits.memory_mb: unknown key", "'limits.memory_budget_mb'"}},
         // Regressions found by fuzz_case_config: messages quoting the file stay one line.
-        BadConfig{"newline_in_toml_error", kFiles + "[case]\nname = t\n", {"not valid TOML", "saw 't\\n'"}},
+        BadConfig{"newline_in_toml_error",
+                  kFiles + "[case]\nname = t\n",
+                  {"not valid TOML", "saw 't\\n'"}},
         BadConfig{"newline_in_key", kFiles + "\"a\\nb\" = 1\n", {"a\\nb: unknown key"}},
-        BadConfig{"newline_in_value", kFiles + "[case]\nunits = \"m\\nm\"\n", {"unknown unit 'm\\nm'"}},
+        BadConfig{
+            "newline_in_value", kFiles + "[case]\nunits = \"m\\nm\"\n", {"unknown unit 'm\\nm'"}},
         BadConfig{"syntax_error", kFiles + "[contact\nband_mm = 0.1\n", {"not valid TOML"}},
-        BadConfig{"map_scale_below_band", kFiles + "[contact]\nband_mm = 1\n[report]\nmap_max_mm = 0.5\n",
+        BadConfig{"map_scale_below_band",
+                  kFiles + "[contact]\nband_mm = 1\n[report]\nmap_max_mm = 0.5\n",
                   {"map_max_mm", "contact.band_mm"}}),
-    [](const ::testing::TestParamInfo<BadConfig>& param_info) { return std::string(param_info.param.name); });
+    [](const ::testing::TestParamInfo<BadConfig>& param_info) {
+      return std::string(param_info.param.name);
+    });
 
 TEST(CaseConfigFile, MissingOrFolder) {
   TempDir tmp;

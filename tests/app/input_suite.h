@@ -10,11 +10,11 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
-#include <sstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -87,8 +87,8 @@ inline std::string NamePart(const std::string& text) {
 /// rwxr-xr-x: the user nobody must reach the files of unprivileged runs.
 inline void OpenToEveryone(const fs::path& path) {
   using fs::perms;
-  fs::permissions(path, perms::owner_all | perms::group_read | perms::group_exec | perms::others_read |
-                            perms::others_exec);
+  fs::permissions(path, perms::owner_all | perms::group_read | perms::group_exec |
+                            perms::others_read | perms::others_exec);
 }
 
 /// Folder of the good case: lower.stl, a 20 x 10 x 20 mm box with its top at y = 0,
@@ -126,7 +126,8 @@ inline Inputs GoodInputs(const fs::path& dir) {
   in.upper = GoodCase() / "upper.stl";
   in.pose = dir / "pose.json";
   std::ofstream(in.pose) << R"({"X_LU": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
-  in.config = "[lower]\nfile = \"{lower}\"\n[upper]\nfile = \"{upper}\"\n[accuracy]\nvoxel_mm = 0.8\n";
+  in.config =
+      "[lower]\nfile = \"{lower}\"\n[upper]\nfile = \"{upper}\"\n[accuracy]\nvoxel_mm = 0.8\n";
   in.config_file = dir / "case.toml";
   in.out = dir / "out";
   return in;
@@ -136,7 +137,8 @@ inline Inputs GoodInputs(const fs::path& dir) {
 inline std::set<std::string> FilesBelow(const fs::path& dir) {
   std::set<std::string> files;
   std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+  for (auto it =
+           fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
        it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (ec) break;
     if (!it->is_directory(ec)) files.insert(fs::relative(it->path(), dir, ec).string());
@@ -157,7 +159,8 @@ inline void Mirror(const fs::path& from, const fs::path& to) {
 }
 
 inline void Replace(std::string* text, const std::string& key, const std::string& value) {
-  for (std::size_t at; (at = text->find(key)) != std::string::npos;) text->replace(at, key.size(), value);
+  for (std::size_t at; (at = text->find(key)) != std::string::npos;)
+    text->replace(at, key.size(), value);
 }
 
 /// A run ready to start: the command line and what to put before the binary.
@@ -209,6 +212,8 @@ inline PreparedRun Prepare(const CommandForm& form, const Inputs& in) {
   return run;
 }
 
-inline CommandRun RunPrepared(const PreparedRun& run) { return OccludeWithPrefix(run.prefix, run.args); }
+inline CommandRun RunPrepared(const PreparedRun& run) {
+  return OccludeWithPrefix(run.prefix, run.args);
+}
 
 }  // namespace occlude::test::suite

@@ -21,7 +21,9 @@ struct OddInput {
   std::string no_warning;  ///< no warning line may contain this ("" = not checked)
 };
 
-io::TriangleMesh Good(const char* jaw) { return io::LoadMesh(GoodCase() / (std::string(jaw) + ".stl")); }
+io::TriangleMesh Good(const char* jaw) {
+  return io::LoadMesh(GoodCase() / (std::string(jaw) + ".stl"));
+}
 
 fs::path Write(const io::TriangleMesh& mesh, const fs::path& file) {
   io::WriteBinaryStl(mesh, file);
@@ -40,7 +42,8 @@ void MetreFiles(Inputs* in) {
 
 std::vector<OddInput> OddInputs() {
   return {
-      {"single_triangle", {"collide", "report"},
+      {"single_triangle",
+       {"collide", "report"},
        [](const CommandForm&, Inputs* in) {
          // One triangle of the lower box's top face, under the upper box.
          io::TriangleMesh one = Good("lower");
@@ -51,10 +54,15 @@ std::vector<OddInput> OddInputs() {
          one.ComputeFaceNormals();
          in->lower = Write(one, in->dir / "one.stl");
        },
-       "", ""},
-      {"jaws_in_metres", {"collide", "report"}, [](const CommandForm&, Inputs* in) { MetreFiles(in); },
-       "set units = \"m\"", ""},
-      {"jaws_in_metres_with_the_unit", {"collide", "report"},
+       "",
+       ""},
+      {"jaws_in_metres",
+       {"collide", "report"},
+       [](const CommandForm&, Inputs* in) { MetreFiles(in); },
+       "set units = \"m\"",
+       ""},
+      {"jaws_in_metres_with_the_unit",
+       {"collide", "report"},
        [](const CommandForm& form, Inputs* in) {
          MetreFiles(in);
          if (std::string(form.name) == "collide") {
@@ -63,15 +71,21 @@ std::vector<OddInput> OddInputs() {
            in->config += "[case]\nunits = \"m\"\n";
          }
        },
-       "", "units"},
-      {"jaws_200mm_apart", {"collide", "report"},
+       "",
+       "units"},
+      {"jaws_200mm_apart",
+       {"collide", "report"},
        [](const CommandForm&, Inputs* in) {
          const Eigen::Isometry3d apart(Eigen::Translation3d(200, 0, 0));
          in->upper = Write(Good("upper").Transformed(apart), in->dir / "upper-apart.stl");
        },
-       "may not share a frame", ""},
-      {"identical_jaws", {"collide", "report"}, [](const CommandForm&, Inputs* in) { in->upper = in->lower; },
-       "the upper and lower jaws are the same surface", ""},
+       "may not share a frame",
+       ""},
+      {"identical_jaws",
+       {"collide", "report"},
+       [](const CommandForm&, Inputs* in) { in->upper = in->lower; },
+       "the upper and lower jaws are the same surface",
+       ""},
   };
 }
 
@@ -80,7 +94,9 @@ struct OddRun {
   OddInput input;
 };
 
-void PrintTo(const OddRun& run, std::ostream* os) { *os << run.command.name << " / " << run.input.name; }
+void PrintTo(const OddRun& run, std::ostream* os) {
+  *os << run.command.name << " / " << run.input.name;
+}
 
 std::vector<OddRun> AllOddRuns() {
   std::vector<OddRun> runs;
@@ -115,11 +131,13 @@ TEST_P(OddInputTest, RunsToTheEndWithTheHelpfulWarning) {
   }
   if (!run.input.warning.empty()) {
     bool found = false;
-    for (const std::string& w : warnings) found = found || w.find(run.input.warning) != std::string::npos;
+    for (const std::string& w : warnings)
+      found = found || w.find(run.input.warning) != std::string::npos;
     EXPECT_TRUE(found) << "no warning with '" << run.input.warning << "':\n" << r.output;
   }
   if (!run.input.no_warning.empty()) {
-    for (const std::string& w : warnings) EXPECT_EQ(w.find(run.input.no_warning), std::string::npos) << w;
+    for (const std::string& w : warnings)
+      EXPECT_EQ(w.find(run.input.no_warning), std::string::npos) << w;
   }
 }
 

@@ -25,12 +25,17 @@ constexpr double kFoundMm = 0.3;
 
 std::string Config(const std::filesystem::path& out, const std::string& adjust = "[0.0, 0.0, 0.0]",
                    const std::string& extra = "") {
-  return "[synthetic]\ntriangles = 5000\n[accuracy]\nvoxel_mm = 0.5\n[solver]\nstarts = 3\nproposals = 2\n" + extra +
+  return "[synthetic]\ntriangles = 5000\n[accuracy]\nvoxel_mm = 0.5\n[solver]\nstarts = "
+         "3\nproposals = 2\n" +
+         extra +
          "[start]\ntranslation_mm = [0.4, 0.5, -0.3]\nrotation_deg = [0.5, -0.8, 0.4]\n"
-         "[adjust]\ntranslation_mm = " + adjust + "\n[output]\nfolder = \"" + out.string() + "\"\n";
+         "[adjust]\ntranslation_mm = " +
+         adjust + "\n[output]\nfolder = \"" + out.string() + "\"\n";
 }
 
-void Write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
+void Write(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
 
 json ReadJson(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -44,8 +49,9 @@ TEST(ProposeCommandTest, FindsTheBiteAndWritesProposalsAndReport) {
   Write(tmp / "case.toml", Config(tmp / "out"));
   const test::CommandRun r = test::Occlude("propose " + (tmp / "case.toml").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"report.html", "metrics.json", "pose.json", "proposals.json", "lower_map.png", "upper_map.png",
-                        "frontal.png", "lateral.png", "upper_at_pose.stl", "proposals/proposal-1.json"}) {
+  for (const char* f : {"report.html", "metrics.json", "pose.json", "proposals.json",
+                        "lower_map.png", "upper_map.png", "frontal.png", "lateral.png",
+                        "upper_at_pose.stl", "proposals/proposal-1.json"}) {
     EXPECT_TRUE(std::filesystem::exists(tmp / "out" / f)) << f;
   }
   const Eigen::Isometry3d best = ReadPoseFile(tmp / "out" / "proposals" / "proposal-1.json");
@@ -73,7 +79,8 @@ TEST(RefineCommandTest, AppliesTheAdjustmentWithALockedDofAndReports) {
   EXPECT_NE(r.output.find("moved t (0.300,"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("contact"), std::string::npos) << r.output;
   const json refine = ReadJson(tmp / "out" / "refine.json");
-  EXPECT_NEAR(refine["moved_from_base"]["translation_mm"][0].get<double>(), 0.3, 1e-6);  // locked at the adjustment
+  EXPECT_NEAR(refine["moved_from_base"]["translation_mm"][0].get<double>(), 0.3,
+              1e-6);  // locked at the adjustment
   EXPECT_TRUE(refine["after"]["feasible"].get<bool>());
   const Eigen::Isometry3d after = ReadPoseFile(tmp / "out" / "pose.json");
   EXPECT_GT((after.translation() - base.translation()).norm(), 0.29);
@@ -84,7 +91,8 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
   Write(tmp / "case.toml", Config(tmp / "out", "[0.1, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
   const std::string log = (tmp / "watch.log").string();
   std::thread watcher([&] {
-    const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " + (tmp / "case.toml").string() +
+    const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " +
+                            (tmp / "case.toml").string() +
                             " --from-config --watch --max-refinements 2 > " + log + " 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0);
   });
@@ -99,11 +107,13 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
   }
   ASSERT_NE(read_log().find("watching"), std::string::npos) << read_log();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  Write(tmp / "case.toml", Config(tmp / "out", "[0.25, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
+  Write(tmp / "case.toml",
+        Config(tmp / "out", "[0.25, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
   watcher.join();
   const std::string out = read_log();
   EXPECT_NE(out.find("moved t (0.100,"), std::string::npos) << out;
-  EXPECT_NE(out.find("moved t (0.250,"), std::string::npos) << out;  // from the same base, not cumulative
+  EXPECT_NE(out.find("moved t (0.250,"), std::string::npos)
+      << out;  // from the same base, not cumulative
 }
 
 std::string ReadText(const std::filesystem::path& file) {
@@ -154,16 +164,19 @@ TEST(ProposeCommandTest, SameInputsSeedAndThreadsGiveByteIdenticalResults) {
   EXPECT_EQ(pose_a, ReadText(tmp / "b" / "pose.json"));
   EXPECT_EQ(ReadText(tmp / "a" / "upper_at_pose.stl"), ReadText(tmp / "b" / "upper_at_pose.stl"));
   EXPECT_EQ(WithoutTimings(tmp / "a" / "metrics.json"), WithoutTimings(tmp / "b" / "metrics.json"));
-  EXPECT_EQ(ReadText(tmp / "a" / "proposals" / "proposal-1.json"), ReadText(tmp / "b" / "proposals" / "proposal-1.json"));
+  EXPECT_EQ(ReadText(tmp / "a" / "proposals" / "proposal-1.json"),
+            ReadText(tmp / "b" / "proposals" / "proposal-1.json"));
 }
 
 // `occlude demo` (what scripts/demo runs): propose on the embedded synthetic case finds the
 // designed bite, writes the report and the case config it ran, which `refine` then takes.
 TEST(DemoCommandTest, ProposesTheDesignedBiteAndLeavesARefinableCase) {
   test::TempDir tmp;
-  const test::CommandRun r = test::Occlude("demo --triangles 5000 --voxel 0.5 --out " + (tmp / "demo").string());
+  const test::CommandRun r =
+      test::Occlude("demo --triangles 5000 --voxel 0.5 --out " + (tmp / "demo").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"report.html", "metrics.json", "pose.json", "proposals.json", "case.toml"}) {
+  for (const char* f :
+       {"report.html", "metrics.json", "pose.json", "proposals.json", "case.toml"}) {
     EXPECT_TRUE(std::filesystem::exists(tmp / "demo" / f)) << f;
   }
   const Eigen::Isometry3d best = ReadPoseFile(tmp / "demo" / "pose.json");
@@ -178,10 +191,13 @@ TEST(DemoCommandTest, ProposesTheDesignedBiteAndLeavesARefinableCase) {
 // budget at 0.2 mm, it names a coarser one that fits (the estimate follows the voxel size).
 TEST(ProposeCommandTest, MemoryGuardNamesACoarserVoxelThatFits) {
   test::TempDir tmp;
-  Write(tmp / "case.toml", "[synthetic]\ntriangles = 20000\n[output]\nfolder = \"" + (tmp / "out").string() + "\"\n");
-  const test::CommandRun r = test::Occlude("propose " + (tmp / "case.toml").string() + " --memory-budget-mb 500");
+  Write(tmp / "case.toml",
+        "[synthetic]\ntriangles = 20000\n[output]\nfolder = \"" + (tmp / "out").string() + "\"\n");
+  const test::CommandRun r =
+      test::Occlude("propose " + (tmp / "case.toml").string() + " --memory-budget-mb 500");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("the smallest voxel size that fits is about"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the smallest voxel size that fits is about"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(std::filesystem::exists(tmp / "out" / "pose.json"));
 }
 
@@ -199,8 +215,9 @@ TEST(ProposeCommandTest, BadSolverSettingsAreOneLineErrorsNamingTheKey) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_FALSE(std::filesystem::exists(tmp / "out" / "report.html"));
   }
-  Write(tmp / "case.toml", "[synthetic]\ntriangles = 5000\n[solver]\nname = \"simplex\"\n[output]\nfolder = \"" +
-                               (tmp / "out").string() + "\"\n");
+  Write(tmp / "case.toml",
+        "[synthetic]\ntriangles = 5000\n[solver]\nname = \"simplex\"\n[output]\nfolder = \"" +
+            (tmp / "out").string() + "\"\n");
   const test::CommandRun r = test::Occlude("propose " + (tmp / "case.toml").string());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("solver.name"), std::string::npos) << r.output;

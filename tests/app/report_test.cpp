@@ -5,20 +5,19 @@
 // report.html embeds the pictures and tables; pose.json reads back; the command
 // writes every file, and bad inputs give one line, non-zero exit and no files.
 #include <gtest/gtest.h>
-
-#include <memory>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "case_config.h"
+#include "occlude/io/synthetic_jaws.h"
 #include "pose_file.h"
 #include "report_analysis.h"
 #include "report_document.h"
-#include "occlude/io/synthetic_jaws.h"
 #include "report_images.h"
 #include "test_common.h"
 
@@ -36,7 +35,8 @@ constexpr int kWindowPx = 3;
 // Pushed 0.2 mm into the lower jaw, penetration covers whole cusp tips: at least this many pixels.
 constexpr int kMinPenetrationPixels = 200;
 
-const std::string kSyntheticConfig = "[synthetic]\ntriangles = 5000\nseed = 1\n[report]\nimage_width_px = 900\n";
+const std::string kSyntheticConfig =
+    "[synthetic]\ntriangles = 5000\nseed = 1\n[report]\nimage_width_px = 900\n";
 
 struct Fixture {
   app::CaseConfig config;
@@ -76,7 +76,8 @@ bool ContactNear(const app::MapImage& m, const Eigen::Vector3d& p_L) {
   for (int dy = -kWindowPx; dy <= kWindowPx; ++dy) {
     for (int dx = -kWindowPx; dx <= kWindowPx; ++dx) {
       const int x = static_cast<int>(px.x()) + dx, y = static_cast<int>(px.y()) + dy;
-      if (x < m.map_x || y < m.map_y || x >= m.map_x + m.map_width || y >= m.map_y + m.map_height) continue;
+      if (x < m.map_x || y < m.map_y || x >= m.map_x + m.map_width || y >= m.map_y + m.map_height)
+        continue;
       if (render::IsContactColour(m.image.At(x, y))) return true;
     }
   }
@@ -89,8 +90,10 @@ TEST(ReportColours, ScaleConventions) {
   EXPECT_TRUE(render::IsContactColour(render::DistanceColour(0.1, s)));
   EXPECT_FALSE(render::IsContactColour(render::DistanceColour(0.3, s)));
   EXPECT_TRUE(render::IsPenetrationColour(render::DistanceColour(-0.05, s)));
-  EXPECT_FALSE(render::IsPenetrationColour(render::DistanceColour(-0.005, s)));  // within the display tolerance
-  for (double d = -0.005; d <= 1.0; d += 0.01) EXPECT_FALSE(render::IsPenetrationColour(render::DistanceColour(d, s))) << d;
+  EXPECT_FALSE(render::IsPenetrationColour(
+      render::DistanceColour(-0.005, s)));  // within the display tolerance
+  for (double d = -0.005; d <= 1.0; d += 0.01)
+    EXPECT_FALSE(render::IsPenetrationColour(render::DistanceColour(d, s))) << d;
   EXPECT_EQ(render::DistanceColour(0.6, s), render::kFarColour);
 }
 
@@ -146,12 +149,13 @@ TEST(ReportDocumentTest, HtmlEmbedsPicturesAndTablesAndPoseReadsBack) {
   in.jaws = &f.jaws;
   in.analysis = &f.pushed;
   in.pose_source = "test";
-  const std::string png =
-      app::EncodePng(app::RenderSideView(app::SideView::kFrontal, f.jaws, f.pushed, Scale(f.config), 400));
+  const std::string png = app::EncodePng(
+      app::RenderSideView(app::SideView::kFrontal, f.jaws, f.pushed, Scale(f.config), 400));
   EXPECT_EQ(png.substr(1, 3), "PNG");
   in.pictures = {{"Frontal view", png, "frontal.png"}};
   const std::string html = app::ReportHtml(in);
-  EXPECT_NE(html.find("src=\"data:image/png;base64," + app::Base64(png).substr(0, 40)), std::string::npos);
+  EXPECT_NE(html.find("src=\"data:image/png;base64," + app::Base64(png).substr(0, 40)),
+            std::string::npos);
   for (const char* s : {"<h2>Pose of the upper jaw</h2>", "<h2>Contact</h2>", "<h2>Per tooth</h2>",
                         "<h2>Settings</h2>", "maximum penetration", "EXCEEDS", "<td>14</td>"}) {
     EXPECT_NE(html.find(s), std::string::npos) << s;
@@ -191,15 +195,17 @@ TEST(ReportCommand, WritesEveryFile) {
   TempDir tmp;
   std::ofstream(tmp / "case.toml") << kSyntheticConfig << "[output]\nfolder = \"report\"\n";
   std::ofstream(tmp / "pushed.json") << R"({"X_LU": [[1,0,0,0],[0,1,0,-0.2],[0,0,1,0],[0,0,0,1]]})";
-  const CommandRun r = Occlude("report " + (tmp / "case.toml").string() + " --pose " + (tmp / "pushed.json").string());
+  const CommandRun r = Occlude("report " + (tmp / "case.toml").string() + " --pose " +
+                               (tmp / "pushed.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* name : {"report.html", "metrics.json", "pose.json", "upper_at_pose.stl", "lower_map.png",
-                           "upper_map.png", "frontal.png", "lateral.png"}) {
+  for (const char* name : {"report.html", "metrics.json", "pose.json", "upper_at_pose.stl",
+                           "lower_map.png", "upper_map.png", "frontal.png", "lateral.png"}) {
     EXPECT_TRUE(std::filesystem::is_regular_file(tmp / "report" / name)) << name;
   }
   const std::string metrics = ReadText(tmp / "report" / "metrics.json");
   EXPECT_NE(metrics.find("\"within_allowed\": false"), std::string::npos);
-  EXPECT_NE(ReadText(tmp / "report" / "report.html").find("data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(ReadText(tmp / "report" / "report.html").find("data:image/png;base64,"),
+            std::string::npos);
   const Eigen::Isometry3d X = app::ReadPoseFile(tmp / "report" / "pose.json");
   EXPECT_NEAR(X.translation().y(), -0.2, 1e-12);
 }
@@ -217,27 +223,36 @@ TEST_P(ReportBadInputTest, OneLineNonZeroExitNoFiles) {
   TempDir tmp;
   if (!GetParam().config.empty()) std::ofstream(tmp / "case.toml") << GetParam().config;
   std::ofstream(tmp / "scaled.json") << R"({"X_LU": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
-  std::string args = "report " + (tmp / "case.toml").string() + " --out " + (tmp / "out").string() + " " + GetParam().extra;
-  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;) args.replace(at, 3, tmp.path().string());
+  std::string args = "report " + (tmp / "case.toml").string() + " --out " + (tmp / "out").string() +
+                     " " + GetParam().extra;
+  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;)
+    args.replace(at, 3, tmp.path().string());
   const CommandRun r = Occlude(args);
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find(GetParam().expected), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_EQ(r.output.rfind("occlude: error: ", 0), 0u) << r.output;
   std::error_code ec;
-  EXPECT_TRUE(!std::filesystem::exists(tmp / "out", ec) || std::filesystem::is_empty(tmp / "out", ec));
+  EXPECT_TRUE(!std::filesystem::exists(tmp / "out", ec) ||
+              std::filesystem::is_empty(tmp / "out", ec));
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, ReportBadInputTest,
     ::testing::Values(
         BadRun{"missing_config", "", "", "no such config file"},
-        BadRun{"unknown_key", kSyntheticConfig + "[contact]\nbnd_mm = 0.1\n", "", "did you mean 'contact.band_mm'"},
-        BadRun{"missing_mesh", "[lower]\nfile = \"nope.stl\"\n[upper]\nfile = \"nope.stl\"\n", "", "lower.file: no such file"},
-        BadRun{"band_over_5mm", kSyntheticConfig + "[contact]\nband_mm = 7\n", "", "contact.band_mm"},
-        BadRun{"non_rigid_pose_file", kSyntheticConfig, "--pose {T}/scaled.json", "not orthonormal"},
+        BadRun{"unknown_key", kSyntheticConfig + "[contact]\nbnd_mm = 0.1\n", "",
+               "did you mean 'contact.band_mm'"},
+        BadRun{"missing_mesh", "[lower]\nfile = \"nope.stl\"\n[upper]\nfile = \"nope.stl\"\n", "",
+               "lower.file: no such file"},
+        BadRun{"band_over_5mm", kSyntheticConfig + "[contact]\nband_mm = 7\n", "",
+               "contact.band_mm"},
+        BadRun{"non_rigid_pose_file", kSyntheticConfig, "--pose {T}/scaled.json",
+               "not orthonormal"},
         BadRun{"missing_pose_file", kSyntheticConfig, "--pose {T}/nope.json", "nope.json"}),
-    [](const ::testing::TestParamInfo<BadRun>& param_info) { return std::string(param_info.param.name); });
+    [](const ::testing::TestParamInfo<BadRun>& param_info) {
+      return std::string(param_info.param.name);
+    });
 
 }  // namespace
 }  // namespace occlude::test

@@ -11,9 +11,9 @@
 #include <random>
 
 #include "case_config.h"
-#include "user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
+#include "user_error.h"
 
 namespace occlude::test {
 namespace {
@@ -22,10 +22,12 @@ using app::ResolutionOption;
 using app::ResolutionTable;
 using collision::AccuracyLevel;
 
-std::string RowJson(double voxel, const char* level, double us, double p95, double max, long missed) {
-  return "{\"method\":\"ist\",\"variant\":\"explicit\",\"query\":\"oracle\",\"voxel_mm\":" + std::to_string(voxel) +
-         ",\"level\":\"" + level + "\",\"median_us\":" + std::to_string(us) + ",\"p95_err_mm\":" +
-         std::to_string(p95) + ",\"max_err_mm\":" + std::to_string(max) +
+std::string RowJson(double voxel, const char* level, double us, double p95, double max,
+                    long missed) {
+  return "{\"method\":\"ist\",\"variant\":\"explicit\",\"query\":\"oracle\",\"voxel_mm\":" +
+         std::to_string(voxel) + ",\"level\":\"" + level +
+         "\",\"median_us\":" + std::to_string(us) + ",\"p95_err_mm\":" + std::to_string(p95) +
+         ",\"max_err_mm\":" + std::to_string(max) +
          ",\"missed_half_band\":" + std::to_string(missed) + "}";
 }
 
@@ -64,8 +66,8 @@ TEST(ResolutionChoiceTest, FastestSettingThatMeetsTheAccuracyAgainstBruteForce) 
       o.max_err_mm = o.p95_err_mm * 1.5;
       o.missed_half_band = rng() % 3 == 0 ? static_cast<long>(rng() % 100) : 0;
       rows.push_back(o);
-      json += (i ? "," : "") + RowJson(o.voxel_mm, levels[l], o.median_us, o.p95_err_mm, o.max_err_mm,
-                                       o.missed_half_band);
+      json += (i ? "," : "") + RowJson(o.voxel_mm, levels[l], o.median_us, o.p95_err_mm,
+                                       o.max_err_mm, o.missed_half_band);
     }
     json += "]}";
     const ResolutionTable table = app::ParseResolutionTable(json, "random table");
@@ -76,7 +78,8 @@ TEST(ResolutionChoiceTest, FastestSettingThatMeetsTheAccuracyAgainstBruteForce) 
     for (const ResolutionOption& o : rows) {
       // (the JSON round trip prints 6 decimals)
       const double p95 = std::stod(std::to_string(o.p95_err_mm));
-      if (p95 <= a && o.missed_half_band == 0 && (!best || o.median_us < best->median_us)) best = &o;
+      if (p95 <= a && o.missed_half_band == 0 && (!best || o.median_us < best->median_us))
+        best = &o;
     }
     if (best) {
       EXPECT_TRUE(c.met) << trial;
@@ -119,9 +122,9 @@ TEST(ResolutionChoiceTest, ExplicitVoxelKeepsItAndFindsItsMeasurement) {
 }
 
 TEST(ResolutionChoiceTest, BadTablesNameTheirSource) {
-  for (const std::string& text : {std::string("not json"), std::string("{\"oracle\": 3}"),
-                                  std::string("{\"oracle\": []}"),
-                                  std::string("{\"oracle\": [") + RowJson(0.2, "fine", 1, 0.1, 0.1, 0) + "]}"}) {
+  for (const std::string& text :
+       {std::string("not json"), std::string("{\"oracle\": 3}"), std::string("{\"oracle\": []}"),
+        std::string("{\"oracle\": [") + RowJson(0.2, "fine", 1, 0.1, 0.1, 0) + "]}"}) {
     try {
       app::ParseResolutionTable(text, "my/table.json");
       ADD_FAILURE() << "accepted: " << text;
@@ -144,14 +147,18 @@ TEST(ResolutionChoiceTest, CaseConfigPicksFromTheBuiltInOrItsOwnTable) {
   EXPECT_DOUBLE_EQ(d.VoxelSizeMm(), expect.chosen.voxel_mm);
   EXPECT_EQ(d.OracleLevel(), expect.chosen.level);
   // Its own table: a 0.5 mm sub-voxel row meets 0.05 mm there and is fastest.
-  std::ofstream(tmp.path() / "t.json") << "{\"case\":\"mine\",\"oracle\":[" << RowJson(0.5, "subvoxel", 100, 0.03, 0.05, 0)
-                                       << "," << RowJson(0.1, "subvoxel", 900, 0.004, 0.01, 0) << "]}";
-  const app::CaseConfig own = load(synthetic + "[accuracy]\naccuracy_mm = 0.05\ntable = \"t.json\"\n");
+  std::ofstream(tmp.path() / "t.json")
+      << "{\"case\":\"mine\",\"oracle\":[" << RowJson(0.5, "subvoxel", 100, 0.03, 0.05, 0) << ","
+      << RowJson(0.1, "subvoxel", 900, 0.004, 0.01, 0) << "]}";
+  const app::CaseConfig own =
+      load(synthetic + "[accuracy]\naccuracy_mm = 0.05\ntable = \"t.json\"\n");
   EXPECT_DOUBLE_EQ(own.VoxelSizeMm(), 0.5);
-  const app::CaseConfig tight = load(synthetic + "[accuracy]\naccuracy_mm = 0.01\ntable = \"t.json\"\n");
+  const app::CaseConfig tight =
+      load(synthetic + "[accuracy]\naccuracy_mm = 0.01\ntable = \"t.json\"\n");
   EXPECT_DOUBLE_EQ(tight.VoxelSizeMm(), 0.1);
   // voxel_mm overrides.
-  EXPECT_DOUBLE_EQ(load(synthetic + "[accuracy]\nvoxel_mm = 0.3\ntable = \"t.json\"\n").VoxelSizeMm(), 0.3);
+  EXPECT_DOUBLE_EQ(
+      load(synthetic + "[accuracy]\nvoxel_mm = 0.3\ntable = \"t.json\"\n").VoxelSizeMm(), 0.3);
   // A missing table names the key.
   try {
     load(synthetic + "[accuracy]\ntable = \"nope.json\"\n");

@@ -31,7 +31,8 @@ inline std::optional<std::string> UnprivilegedPrefix(std::string* why) {
   const std::string prefix = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
   const std::string probe = prefix + OCCLUDE_BINARY + " --version >/dev/null 2>&1";
   if (std::system(probe.c_str()) != 0) {
-    *why = "'" + prefix + "occlude --version' fails (no setpriv, or the user nobody cannot reach the binary)";
+    *why = "'" + prefix +
+           "occlude --version' fails (no setpriv, or the user nobody cannot reach the binary)";
     return std::nullopt;
   }
   return prefix;

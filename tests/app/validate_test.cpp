@@ -2,17 +2,18 @@
 // solver, magnitude and start with the documented columns, the closing rows start at the
 // reference, easy perturbations return within the success bar, the consensus statistics,
 // the charts; and the command itself (files written, bad options rejected with one line).
+#include "validate.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 
-#include "user_error.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "run_occlude.h"
 #include "test_common.h"
-#include "validate.h"
+#include "user_error.h"
 
 namespace occlude::app {
 namespace {
@@ -48,7 +49,8 @@ const ValidateResult& SmallRun(ValidateOptions* used = nullptr) {
     o.global_samples = 6;
     return o;
   }();
-  static const ValidateResult result = RunValidation(SyntheticJawPairCase(io::kMinSyntheticTriangles, 1), options);
+  static const ValidateResult result =
+      RunValidation(SyntheticJawPairCase(io::kMinSyntheticTriangles, 1), options);
   if (used) *used = options;
   return result;
 }
@@ -66,9 +68,9 @@ void CheckRunsAndSummaries(const ValidateResult& r, const ValidateOptions& optio
       EXPECT_LE(run.start_error.rotation_deg, 1.0 + 1e-9);
       EXPECT_LE(run.start_error.translation_mm, 0.5 + 0.61);
     }
-    EXPECT_TRUE(run.success) << planner::ToString(run.solver) << " magnitude " << run.magnitude.mm << " start "
-                             << run.start << ": " << run.error.translation_mm << " mm " << run.error.rotation_deg
-                             << " deg";
+    EXPECT_TRUE(run.success) << planner::ToString(run.solver) << " magnitude " << run.magnitude.mm
+                             << " start " << run.start << ": " << run.error.translation_mm << " mm "
+                             << run.error.rotation_deg << " deg";
     EXPECT_LE(run.constrained_penetration_mm, options.max_penetration_mm + 0.004);
     EXPECT_GT(run.seconds, 0.0);
     EXPECT_TRUE(run.X_LU.matrix().allFinite());
@@ -87,16 +89,18 @@ void CheckCsvAndCharts(const ValidateResult& r, const ValidateOptions& options) 
   std::istringstream csv(ValidateCsv(r));
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("solver,magnitude_mm,magnitude_deg,start,err_mm,err_deg,max_penetration_mm,"
-                         "contact_area_mm2,seconds,success",
-                         0),
-            0u)
+  EXPECT_EQ(
+      header.rfind("solver,magnitude_mm,magnitude_deg,start,err_mm,err_deg,max_penetration_mm,"
+                   "contact_area_mm2,seconds,success",
+                   0),
+      0u)
       << header;
   int rows = 0;
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, static_cast<int>(r.runs.size()));
-  EXPECT_NE(ValidateSummaryCsv(r).find("coarse-to-fine,0.5,1," + std::to_string(options.starts) + ",1,"),
-            std::string::npos)
+  EXPECT_NE(
+      ValidateSummaryCsv(r).find("coarse-to-fine,0.5,1," + std::to_string(options.starts) + ",1,"),
+      std::string::npos)
       << ValidateSummaryCsv(r);
   const std::string text = ValidateSummaryText(r, options, "test machine");
   EXPECT_NE(text.find("closing"), std::string::npos);
@@ -127,7 +131,8 @@ void CheckReferencePath(const ValidateResult& r, const ValidateOptions& options)
   std::istringstream csv(ReferencePathCsv(r));
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("s,from_reference_mm,from_reference_deg,contact_area_mm2", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("s,from_reference_mm,from_reference_deg,contact_area_mm2", 0), 0u)
+      << header;
   int rows = 0;
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, options.path_steps + 1);
@@ -166,7 +171,8 @@ TEST(PoseDominanceTest, MoreContactAndNoDeeperPenetrationDominates) {
 TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
   JawPairCase jaws = SyntheticJawPairCase(io::kMinSyntheticTriangles, 1);
   const Eigen::Isometry3d X_bite = jaws.X_LU_ref;
-  jaws.X_LU_ref.pretranslate(Eigen::Vector3d(0.0, 0.5, 0.0));  // +y: occlusal axis of the synthetic pair
+  jaws.X_LU_ref.pretranslate(
+      Eigen::Vector3d(0.0, 0.5, 0.0));  // +y: occlusal axis of the synthetic pair
   ValidateOptions o;
   o.solvers = {planner::SolverKind::kCeres};
   o.starts = 1;
@@ -178,9 +184,12 @@ TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
   EXPECT_EQ(r.reference.contact_area_mm2, 0.0);
   ASSERT_GE(c.nearest_dominating, 1);
   ASSERT_GE(c.nearest_dominating_beyond_bar, c.nearest_dominating);
-  EXPECT_GT(c.path[static_cast<std::size_t>(c.nearest_dominating_beyond_bar)].from_start.translation_mm, o.success_mm);
+  EXPECT_GT(
+      c.path[static_cast<std::size_t>(c.nearest_dominating_beyond_bar)].from_start.translation_mm,
+      o.success_mm);
   ASSERT_GE(c.most_contact_dominating, c.nearest_dominating);
-  const planner::PoseEvaluation& best = c.path[static_cast<std::size_t>(c.most_contact_dominating)].evaluation;
+  const planner::PoseEvaluation& best =
+      c.path[static_cast<std::size_t>(c.most_contact_dominating)].evaluation;
   EXPECT_GT(best.contact_area_mm2, r.reference.contact_area_mm2 + 1.0);
   EXPECT_LE(best.constrained_penetration_mm, r.reference.constrained_penetration_mm);
   // The consensus is the designed bite again, 0.5 mm from the opened reference.
@@ -192,11 +201,14 @@ TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
 
 TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
   test::TempDir tmp;
-  const test::CommandRun ok = test::Occlude("validate --synthetic 5000 --solver ceres --starts 1 --magnitudes 0.5:1 "
-                                            "--voxels 0.5 --out " + (tmp / "v").string());
+  const test::CommandRun ok = test::Occlude(
+      "validate --synthetic 5000 --solver ceres --starts 1 --magnitudes 0.5:1 "
+      "--voxels 0.5 --out " +
+      (tmp / "v").string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
-  for (const char* f : {"validate.csv", "validate-summary.csv", "validate-summary.txt", "stability.png", "error.png",
-                        "time-vs-error.png", "reference-path.csv", "reference-path.png"}) {
+  for (const char* f :
+       {"validate.csv", "validate-summary.csv", "validate-summary.txt", "stability.png",
+        "error.png", "time-vs-error.png", "reference-path.csv", "reference-path.png"}) {
     EXPECT_TRUE(std::filesystem::exists(tmp / "v" / f)) << f;
   }
   const std::vector<std::pair<std::string, std::string>> bad = {
@@ -206,7 +218,8 @@ TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
       {"--synthetic 5000 --voxels 0", "--voxels"},
       {"--synthetic 100", "triangles"}};
   for (const auto& [args, expected] : bad) {
-    const test::CommandRun r = test::Occlude("validate " + args + " --out " + (tmp / "bad").string());
+    const test::CommandRun r =
+        test::Occlude("validate " + args + " --out " + (tmp / "bad").string());
     EXPECT_NE(r.exit_code, 0) << args;
     // One line of error (CLI11 adds a "Run with --help" hint for option errors).
     EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << args << ": " << r.output;

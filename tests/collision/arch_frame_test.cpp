@@ -29,11 +29,12 @@ TEST(ArchFrame, RecoversRotatedOcclusalAndAnteriorAxes) {
   const io::SyntheticJawPair jaws = io::MakeSyntheticJawPair(o);
   const io::TriangleMesh upper_L = jaws.upper_U.Transformed(jaws.X_LU);
   for (const Eigen::Vector3d& axis_angle_deg :
-       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(25, 0, 0), Eigen::Vector3d(0, 0, -30), Eigen::Vector3d(20, 40, 10),
-        Eigen::Vector3d(90, 0, 0)}) {
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(25, 0, 0), Eigen::Vector3d(0, 0, -30),
+        Eigen::Vector3d(20, 40, 10), Eigen::Vector3d(90, 0, 0)}) {
     const double angle = axis_angle_deg.norm() * M_PI / 180.0;
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    if (angle > 0) X.linear() = Eigen::AngleAxisd(angle, axis_angle_deg.normalized()).toRotationMatrix();
+    if (angle > 0)
+      X.linear() = Eigen::AngleAxisd(angle, axis_angle_deg.normalized()).toRotationMatrix();
     X.translation() = Eigen::Vector3d(12, -40, 300);
     const ArchFrame f = EstimateArchFrame(jaws.lower_L.Transformed(X), upper_L.Transformed(X));
     EXPECT_LT(AngleDeg(f.occlusal_L, X.linear() * Eigen::Vector3d::UnitY()), kOcclusalToleranceDeg)

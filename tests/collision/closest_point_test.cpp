@@ -31,7 +31,10 @@ TEST(ClosestPointTest, NeverFartherThanSampledPoints) {
     EXPECT_GE(cp.barycentric.minCoeff(), -1e-12);
     for (int s = 0; s < 200; ++s) {
       double x = w(rng), y = w(rng);
-      if (x + y > 1) { x = 1 - x; y = 1 - y; }
+      if (x + y > 1) {
+        x = 1 - x;
+        y = 1 - y;
+      }
       const Eigen::Vector3d q = a + x * (b - a) + y * (c - a);
       ASSERT_LE(cp.squared_distance, (p - q).squaredNorm() + 1e-12);
     }

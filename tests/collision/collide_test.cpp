@@ -20,7 +20,8 @@ namespace {
 
 using io::TriangleMesh;
 
-SphereTree Tree(const TriangleMesh& m, double s, SphereMode explicit_from = SphereMode::kOptimized) {
+SphereTree Tree(const TriangleMesh& m, double s,
+                SphereMode explicit_from = SphereMode::kOptimized) {
   SphereTreeOptions o;
   o.voxelize.voxel_size_mm = s;
   o.explicit_from = explicit_from;
@@ -49,9 +50,11 @@ std::vector<VoxelPair> BruteForcePairs(const SphereTree& a, const SphereTree& b,
   const auto& ob = b.octree();
   // Grown cubes farther apart than the sum of their circumradii cannot overlap:
   // a cheap, conservative prefilter before the exact test.
-  const double reach = kCubeCircumradius * (a.voxel_size_mm() + b.voxel_size_mm() + 2.0 * delta) + 1e-9;
+  const double reach =
+      kCubeCircumradius * (a.voxel_size_mm() + b.voxel_size_mm() + 2.0 * delta) + 1e-9;
   std::vector<Eigen::Vector3d> centers_b;
-  for (std::uint32_t j = 0; j < ob.num_leaves(); ++j) centers_b.push_back(X_AB * b.CubeCenter(ob.leaf_begin() + j, 0));
+  for (std::uint32_t j = 0; j < ob.num_leaves(); ++j)
+    centers_b.push_back(X_AB * b.CubeCenter(ob.leaf_begin() + j, 0));
   for (std::uint32_t i = 0; i < oa.num_leaves(); ++i) {
     const Eigen::Vector3d ca = a.CubeCenter(oa.leaf_begin() + i, 0);
     for (std::uint32_t j = 0; j < ob.num_leaves(); ++j) {
@@ -76,9 +79,9 @@ BruteTriangles BruteForceTriangles(const TriangleMesh& ma, const TriangleMesh& m
   BruteTriangles r;
   for (std::uint32_t i = 0; i < ma.num_triangles(); ++i) {
     for (std::uint32_t j = 0; j < mb.num_triangles(); ++j) {
-      const TriangleDistance d =
-          TriangleTriangleDistance(ma.corner(i, 0), ma.corner(i, 1), ma.corner(i, 2), X_AB * mb.corner(j, 0),
-                                   X_AB * mb.corner(j, 1), X_AB * mb.corner(j, 2));
+      const TriangleDistance d = TriangleTriangleDistance(
+          ma.corner(i, 0), ma.corner(i, 1), ma.corner(i, 2), X_AB * mb.corner(j, 0),
+          X_AB * mb.corner(j, 1), X_AB * mb.corner(j, 2));
       r.min_distance = std::min(r.min_distance, d.distance);
       if (d.distance <= delta) r.within.emplace_back(i, j);
     }
@@ -130,8 +133,9 @@ TEST_F(CollideOracleTest, AllModesMatchBruteForceLeafPairsAndMissNoContact) {
     const BruteTriangles brute = BruteForceTriangles(a.mesh(), b.mesh(), X_AB, delta);
     poses_with_contacts += brute.within.empty() ? 0 : 1;
     for (const auto& [ta, tb] : brute.within) {
-      const bool covered = std::any_of(res.pairs.begin(), res.pairs.end(),
-                                       [&](const VoxelPair& p) { return PairCovers(a, b, p, ta, tb); });
+      const bool covered = std::any_of(res.pairs.begin(), res.pairs.end(), [&](const VoxelPair& p) {
+        return PairCovers(a, b, p, ta, tb);
+      });
       ASSERT_TRUE(covered) << "missed triangles " << ta << "," << tb << " at trial " << trial;
     }
   }
@@ -187,7 +191,8 @@ TEST_F(CollideOracleTest, BooleanReportsARealPairInEveryMode) {
         ASSERT_EQ(first.overlap, all.overlap) << trial << " " << ToString(mode);
         ASSERT_EQ(first.pairs.size(), all.overlap ? 1u : 0u);
         if (first.overlap) {
-          EXPECT_TRUE(std::binary_search(pairs.begin(), pairs.end(), first.pairs[0])) << trial << " " << ToString(mode);
+          EXPECT_TRUE(std::binary_search(pairs.begin(), pairs.end(), first.pairs[0]))
+              << trial << " " << ToString(mode);
         }
       }
       hits += all.overlap ? 1 : 0;
@@ -342,7 +347,7 @@ TEST(CollideValidationTest, RejectsBadRequests) {
 
 TEST(GrownCubesOverlapTest, AxisAlignedIsAnalytic) {
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  EXPECT_TRUE(GrownCubesOverlap({0, 0, 0}, 0.5, {1.0, 0, 0}, 0.5, I, 0.0));   // touching
+  EXPECT_TRUE(GrownCubesOverlap({0, 0, 0}, 0.5, {1.0, 0, 0}, 0.5, I, 0.0));  // touching
   EXPECT_FALSE(GrownCubesOverlap({0, 0, 0}, 0.5, {1.01, 0, 0}, 0.5, I, 0.0));
   EXPECT_TRUE(GrownCubesOverlap({0, 0, 0}, 0.5, {1.01, 0, 0}, 0.5, I, 0.005));
   EXPECT_FALSE(GrownCubesOverlap({0, 0, 0}, 0.5, {1.01, 1.01, 0}, 0.5, I, 0.004));
@@ -358,15 +363,17 @@ TEST(GrownCubesOverlapTest, RotatedCubesAgreeWithTriangleDistanceOracle) {
     double dmin = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < 12; ++i) {
       for (std::size_t j = 0; j < 12; ++j) {
-        dmin = std::min(dmin, TriangleTriangleDistance(ca.corner(i, 0), ca.corner(i, 1), ca.corner(i, 2),
-                                                       cb.corner(j, 0), cb.corner(j, 1), cb.corner(j, 2))
-                                  .distance);
+        dmin = std::min(dmin,
+                        TriangleTriangleDistance(ca.corner(i, 0), ca.corner(i, 1), ca.corner(i, 2),
+                                                 cb.corner(j, 0), cb.corner(j, 1), cb.corner(j, 2))
+                            .distance);
       }
     }
     const bool contained = X.translation().cwiseAbs().maxCoeff() < 0.5;
     const bool oracle = dmin == 0.0 || contained;
     if (std::abs(dmin) > 1e-9 || oracle) {
-      ASSERT_EQ(GrownCubesOverlap({0, 0, 0}, 0.5, X.translation(), 0.5, X.linear(), 0.0), oracle) << trial;
+      ASSERT_EQ(GrownCubesOverlap({0, 0, 0}, 0.5, X.translation(), 0.5, X.linear(), 0.0), oracle)
+          << trial;
     }
     overlaps += oracle ? 1 : 0;
     // Within delta (Euclidean) implies overlap of the cubes grown by delta/2.
@@ -395,24 +402,26 @@ TEST(CollectCellsTest, CoversEveryVoxelPairAndReportsEachCellOnce) {
     const std::vector<VoxelPair> brute = BruteForcePairs(a, b, X_AB, 0.15);
     for (int level : {0, 1, 2}) {
       for (int a_level : {0, 1, 2})
-      for (SphereMode mode : {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit}) {
-        CellRequest req;
-        req.reach_mm = 0.15;
-        req.cell_level = level;
-        req.a_level = a_level;
-        req.spheres = mode;
-        CellResult res;
-        CollectCells(a, b, X_AB, req, &res);
-        std::set<std::uint64_t> cells;
-        for (const auto node : res.cells_b) {
-          ASSERT_TRUE(cells.insert(MortonEncode(b.octree().coord[node])).second) << "cell reported twice";
+        for (SphereMode mode :
+             {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit}) {
+          CellRequest req;
+          req.reach_mm = 0.15;
+          req.cell_level = level;
+          req.a_level = a_level;
+          req.spheres = mode;
+          CellResult res;
+          CollectCells(a, b, X_AB, req, &res);
+          std::set<std::uint64_t> cells;
+          for (const auto node : res.cells_b) {
+            ASSERT_TRUE(cells.insert(MortonEncode(b.octree().coord[node])).second)
+                << "cell reported twice";
+          }
+          for (const VoxelPair& p : brute) {
+            const Eigen::Vector3i v = b.octree().coord[b.octree().leaf_begin() + p.voxel_b];
+            const Eigen::Vector3i c(v.x() >> level, v.y() >> level, v.z() >> level);
+            ASSERT_TRUE(cells.count(MortonEncode(c))) << "trial " << trial << " level " << level;
+          }
         }
-        for (const VoxelPair& p : brute) {
-          const Eigen::Vector3i v = b.octree().coord[b.octree().leaf_begin() + p.voxel_b];
-          const Eigen::Vector3i c(v.x() >> level, v.y() >> level, v.z() >> level);
-          ASSERT_TRUE(cells.count(MortonEncode(c))) << "trial " << trial << " level " << level;
-        }
-      }
     }
   }
 }

@@ -31,7 +31,8 @@ VoxelGrid Grid(const io::TriangleMesh& m, double s) {
 double BruteDistance(const VoxelGrid& g, const V& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const std::uint64_t k : g.surface_keys) {
-    const V gap = ((p - g.VoxelCenter(MortonDecode(k))).cwiseAbs().array() - 0.5 * g.voxel_size_mm).cwiseMax(0.0);
+    const V gap = ((p - g.VoxelCenter(MortonDecode(k))).cwiseAbs().array() - 0.5 * g.voxel_size_mm)
+                      .cwiseMax(0.0);
     best = std::min(best, gap.norm());
   }
   return best;
@@ -55,7 +56,8 @@ TEST(DistanceBoundTest, NeverAboveTheExactDistanceAndExactAtCellCentres) {
     V p(u(rng), u(rng), u(rng));
     if (i % 2 == 0) {  // a voxel centre
       const V q = (p - grid.origin_F) / s;
-      p = grid.origin_F + s * (V(std::floor(q.x()), std::floor(q.y()), std::floor(q.z())) + V::Constant(0.5));
+      p = grid.origin_F +
+          s * (V(std::floor(q.x()), std::floor(q.y()), std::floor(q.z())) + V::Constant(0.5));
     }
     const double exact = BruteDistance(grid, p);
     const double lb = bound.LowerBound(p);
@@ -90,10 +92,12 @@ TEST(DistanceBoundTest, OneSidedCellsCoverEverySurfacePointWithinReach) {
   int checked = 0;
   for (int trial = 0; trial < 6; ++trial) {
     Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
-    X_AB.linear() = Eigen::AngleAxisd(2.0 * u(rng), V(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    X_AB.linear() =
+        Eigen::AngleAxisd(2.0 * u(rng), V(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
     X_AB.translation() = V(1.4 + 0.3 * u(rng), 0.2 * u(rng), 0.1 * u(rng));
     for (const int level : {0, 1, 2}) {
-      for (const SphereMode mode : {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit}) {
+      for (const SphereMode mode :
+           {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit}) {
         CellRequest req;
         req.reach_mm = kReach;
         req.cell_level = level;
@@ -103,7 +107,8 @@ TEST(DistanceBoundTest, OneSidedCellsCoverEverySurfacePointWithinReach) {
         CollectCells(a, b, X_AB, req, &res);
         std::set<std::uint64_t> cells;
         for (const auto node : res.cells_b) {
-          ASSERT_TRUE(cells.insert(MortonEncode(b.octree().coord[node])).second) << "cell reported twice";
+          ASSERT_TRUE(cells.insert(MortonEncode(b.octree().coord[node])).second)
+              << "cell reported twice";
         }
         // Random points on B's triangles within reach of A's surface.
         for (int i = 0; i < 400; ++i) {
@@ -119,7 +124,8 @@ TEST(DistanceBoundTest, OneSidedCellsCoverEverySurfacePointWithinReach) {
           double d2 = std::numeric_limits<double>::infinity();
           for (std::size_t k = 0; k < sphere.num_triangles(); ++k) {
             d2 = std::min(d2, ClosestPointOnTriangle(p_A, sphere.corner(k, 0), sphere.corner(k, 1),
-                                                     sphere.corner(k, 2)).squared_distance);
+                                                     sphere.corner(k, 2))
+                                  .squared_distance);
           }
           if (d2 > kReach * kReach) continue;
           const Eigen::Vector3i v = b.grid().VoxelOf(p_B);
@@ -157,7 +163,8 @@ TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
       x = 1 - x;
       y = 1 - y;
     }
-    const V p = box.corner(t, 0) + x * (box.corner(t, 1) - box.corner(t, 0)) + y * (box.corner(t, 2) - box.corner(t, 0));
+    const V p = box.corner(t, 0) + x * (box.corner(t, 1) - box.corner(t, 0)) +
+                y * (box.corner(t, 2) - box.corner(t, 0));
     if (std::abs(p.x() + 0.6) < 1e-9 || std::abs(p.z() - 0.3) < 1e-9) points.push_back(p);
   }
   std::vector<std::vector<V>> in_node(oct.num_nodes());
@@ -165,7 +172,8 @@ TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
     const Eigen::Vector3i v = b.grid().VoxelOf(p);
     for (int level = 1; level <= oct.top_level; ++level) {
       const Eigen::Vector3i c(v.x() >> level, v.y() >> level, v.z() >> level);
-      for (auto n = oct.level_begin[static_cast<std::size_t>(level)]; n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
+      for (auto n = oct.level_begin[static_cast<std::size_t>(level)];
+           n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
         if (oct.coord[n] == c) in_node[n].push_back(p);
       }
     }
@@ -183,7 +191,8 @@ TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
   int checked = 0, empty_nodes = 0;
   for (int trial = 0; trial < 6; ++trial) {
     Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
-    X_AB.linear() = Eigen::AngleAxisd(2.0 * u(rng), V(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    X_AB.linear() =
+        Eigen::AngleAxisd(2.0 * u(rng), V(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
     X_AB.translation() = V(1.4 + 0.3 * u(rng), 0.2 * u(rng), 0.1 * u(rng));
     for (const int level : {1, 2}) {
       CellRequest req;
@@ -195,8 +204,10 @@ TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
       CollectCells(a, b, X_AB, req, &res);
       std::set<std::uint32_t> cells(res.cells_b.begin(), res.cells_b.end());
       ASSERT_EQ(cells.size(), res.cells_b.size()) << "cell reported twice";
-      for (const auto node : res.cells_b) EXPECT_FALSE(in_node[node].empty()) << "node without points reported";
-      for (auto n = oct.level_begin[static_cast<std::size_t>(level)]; n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
+      for (const auto node : res.cells_b)
+        EXPECT_FALSE(in_node[node].empty()) << "node without points reported";
+      for (auto n = oct.level_begin[static_cast<std::size_t>(level)];
+           n < oct.level_end[static_cast<std::size_t>(level)]; ++n) {
         if (in_node[n].empty()) {
           ++empty_nodes;
           continue;
@@ -205,7 +216,8 @@ TEST(DistanceBoundTest, CallerSpheresCoverTheirPointsWithinReach) {
           const V p_A = X_AB * p_B;
           double d2 = std::numeric_limits<double>::infinity();
           for (std::size_t k = 0; k < sphere.num_triangles(); ++k) {
-            d2 = std::min(d2, ClosestPointOnTriangle(p_A, sphere.corner(k, 0), sphere.corner(k, 1), sphere.corner(k, 2))
+            d2 = std::min(d2, ClosestPointOnTriangle(p_A, sphere.corner(k, 0), sphere.corner(k, 1),
+                                                     sphere.corner(k, 2))
                                   .squared_distance);
           }
           if (d2 > kReach * kReach) continue;

@@ -36,8 +36,9 @@ Pair MakePair(std::size_t triangles) {
 // Checks and prints (for the README's figures) estimate / built.
 void ExpectWithinFactor(std::size_t estimate, std::size_t measured, const std::string& what) {
   const double ratio = static_cast<double>(estimate) / static_cast<double>(measured);
-  std::printf("memory estimate: %-48s estimate %8.1f MB, built %8.1f MB, ratio %.2f\n", what.c_str(),
-              static_cast<double>(estimate) / 1e6, static_cast<double>(measured) / 1e6, ratio);
+  std::printf("memory estimate: %-48s estimate %8.1f MB, built %8.1f MB, ratio %.2f\n",
+              what.c_str(), static_cast<double>(estimate) / 1e6,
+              static_cast<double>(measured) / 1e6, ratio);
   EXPECT_LT(ratio, kFactor) << what << ": estimate " << estimate << ", built " << measured;
   EXPECT_GT(ratio, 1.0 / kFactor) << what << ": estimate " << estimate << ", built " << measured;
 }
@@ -63,8 +64,10 @@ TEST_P(MemoryEstimateTest, TreesOracleAndFieldWithinFactorOfTheBuilt) {
   tree_options.voxelize.voxel_size_mm = voxel_mm;
   const SphereTree tree = SphereTree::Build(pair.lower_L, tree_options);
   const MemoryEstimate tree_estimate = EstimateSphereTreeMemory(*pair.lower_L, tree_options);
-  const std::string where = " (" + std::to_string(triangles) + " triangles, " + std::to_string(voxel_mm).substr(0, 4) + " mm)";
-  ExpectWithinFactor(tree_estimate.resident_bytes, tree.stats().total_bytes(), "sphere tree" + where);
+  const std::string where = " (" + std::to_string(triangles) + " triangles, " +
+                            std::to_string(voxel_mm).substr(0, 4) + " mm)";
+  ExpectWithinFactor(tree_estimate.resident_bytes, tree.stats().total_bytes(),
+                     "sphere tree" + where);
   EXPECT_GE(tree_estimate.peak_bytes, tree_estimate.resident_bytes);
 
   if (with_oracle) {
@@ -96,7 +99,8 @@ INSTANTIATE_TEST_SUITE_P(SyntheticPair, MemoryEstimateTest,
                                            Size{20000, 0.2, false}),
                          [](const ::testing::TestParamInfo<Size>& param_info) {
                            return "triangles" + std::to_string(param_info.param.triangles) +
-                                  "_voxel" + std::to_string(std::lround(param_info.param.voxel_mm * 1000)) +
+                                  "_voxel" +
+                                  std::to_string(std::lround(param_info.param.voxel_mm * 1000)) +
                                   "um";
                          });
 
@@ -114,14 +118,15 @@ TEST(MemoryEstimate, RealJawsWithinFactorOfTheBuilt) {
     OracleOptions options;
     options.voxel_size_mm = voxel_mm;
     const JawOracle oracle(lower, upper, options);
-    ExpectWithinFactor(EstimateOracleMemory(*lower, *upper, options).resident_bytes, oracle.MemoryBytes(),
+    ExpectWithinFactor(EstimateOracleMemory(*lower, *upper, options).resident_bytes,
+                       oracle.MemoryBytes(),
                        "oracle (a-bite-3shape, " + std::to_string(voxel_mm).substr(0, 4) + " mm)");
   }
   SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = 0.4;
   const SphereTree tree = SphereTree::Build(upper, tree_options);
-  ExpectWithinFactor(EstimateSphereTreeMemory(*upper, tree_options).resident_bytes, tree.stats().total_bytes(),
-                     "sphere tree (a-bite-3shape upper, 0.40 mm)");
+  ExpectWithinFactor(EstimateSphereTreeMemory(*upper, tree_options).resident_bytes,
+                     tree.stats().total_bytes(), "sphere tree (a-bite-3shape upper, 0.40 mm)");
 }
 
 TEST(MemoryEstimate, FinerVoxelsNeedMore) {

@@ -17,7 +17,8 @@ VoxelGrid GridFromCoords(const std::vector<Eigen::Vector3i>& coords) {
   g.voxel_size_mm = 0.5;
   for (const auto& c : coords) g.surface_keys.push_back(MortonEncode(c));
   std::sort(g.surface_keys.begin(), g.surface_keys.end());
-  g.surface_keys.erase(std::unique(g.surface_keys.begin(), g.surface_keys.end()), g.surface_keys.end());
+  g.surface_keys.erase(std::unique(g.surface_keys.begin(), g.surface_keys.end()),
+                       g.surface_keys.end());
   g.triangle_offsets.assign(g.surface_keys.size() + 1, 0);
   return g;
 }
@@ -28,7 +29,8 @@ TEST(MortonTest, RoundTripAndParentShift) {
   for (int i = 0; i < 1000; ++i) {
     const Eigen::Vector3i c(u(rng), u(rng), u(rng));
     ASSERT_EQ(MortonDecode(MortonEncode(c)), c);
-    ASSERT_EQ(MortonDecode(MortonEncode(c) >> 3), Eigen::Vector3i(c.x() >> 1, c.y() >> 1, c.z() >> 1));
+    ASSERT_EQ(MortonDecode(MortonEncode(c) >> 3),
+              Eigen::Vector3i(c.x() >> 1, c.y() >> 1, c.z() >> 1));
   }
 }
 
@@ -52,7 +54,8 @@ TEST(OctreeTest, LevelsMatchShiftedCoordinatesOnRandomSparseSets) {
     EXPECT_EQ(t.level_begin[static_cast<std::size_t>(t.top_level)], 0u);
     ASSERT_EQ(t.num_leaves(), g.surface_keys.size());
     for (std::size_t i = 0; i < g.surface_keys.size(); ++i) {
-      ASSERT_EQ(MortonEncode(t.coord[t.leaf_begin() + i]), g.surface_keys[i]);  // leaf order = grid order
+      ASSERT_EQ(MortonEncode(t.coord[t.leaf_begin() + i]),
+                g.surface_keys[i]);  // leaf order = grid order
     }
     for (int level = 1; level <= t.top_level; ++level) {
       std::set<std::uint64_t> expected;
@@ -66,7 +69,8 @@ TEST(OctreeTest, LevelsMatchShiftedCoordinatesOnRandomSparseSets) {
           if (!(t.child_mask[n] & (1 << slot))) continue;
           ASSERT_GE(child, t.level_begin[level - 1]);
           ASSERT_LT(child, t.level_end[level - 1]);
-          EXPECT_EQ(t.coord[child], 2 * t.coord[n] + Eigen::Vector3i(slot & 1, (slot >> 1) & 1, slot >> 2));
+          EXPECT_EQ(t.coord[child],
+                    2 * t.coord[n] + Eigen::Vector3i(slot & 1, (slot >> 1) & 1, slot >> 2));
           ++child;
         }
       }

@@ -82,7 +82,8 @@ Work CompareAt(const JawOracle& oracle, const Isometry3d& X, OracleRequest req) 
 }
 
 /// The indices and depths of the penetrating points no deeper than `depth`.
-std::vector<std::pair<std::size_t, double>> ShallowPoints(const std::vector<SurfacePoint>& points, double depth) {
+std::vector<std::pair<std::size_t, double>> ShallowPoints(const std::vector<SurfacePoint>& points,
+                                                          double depth) {
   std::vector<std::pair<std::size_t, double>> out;
   for (const SurfacePoint& p : points) {
     if (-p.distance_mm <= depth) out.emplace_back(out.size(), p.distance_mm);
@@ -99,9 +100,10 @@ std::vector<Isometry3d> Sweep(const Isometry3d& X_ref, const Vector3d& axis, con
   std::vector<Isometry3d> poses;
   for (const double offset : offsets) {
     const double angle = 0.3 * M_PI / 180.0 * u(rng);
-    const Isometry3d jitter = Eigen::Translation3d(pivot + 0.05 * Vector3d(u(rng), 0.0, u(rng))) *
-                              Eigen::AngleAxisd(angle, Vector3d(u(rng), u(rng), u(rng)).normalized()) *
-                              Eigen::Translation3d(-pivot);
+    const Isometry3d jitter =
+        Eigen::Translation3d(pivot + 0.05 * Vector3d(u(rng), 0.0, u(rng))) *
+        Eigen::AngleAxisd(angle, Vector3d(u(rng), u(rng), u(rng)).normalized()) *
+        Eigen::Translation3d(-pivot);
     poses.push_back(Eigen::Translation3d(offset * axis) * jitter * X_ref);
   }
   return poses;
@@ -117,7 +119,8 @@ io::TriangleMesh WavySurface(bool up, double phase, double lift) {
   for (int j = 0; j <= kN; ++j) {
     for (int i = 0; i <= kN; ++i) {
       const double x = i * kStep, y = j * kStep;
-      const double z = 0.4 * std::sin(1.3 * x + phase) * std::cos(0.9 * y) + 0.15 * std::sin(0.7 * x + 1.7 * y) + lift;
+      const double z = 0.4 * std::sin(1.3 * x + phase) * std::cos(0.9 * y) +
+                       0.15 * std::sin(0.7 * x + 1.7 * y) + lift;
       m.vertices.emplace_back(x, y, z);
     }
   }
@@ -146,8 +149,8 @@ TEST(OracleCull, WavySurfacesThroughContactMatchTheUnculledQuery) {
   const JawOracle oracle(lower, upper, options);
   const Vector3d pivot(4, 4, 0);
   std::size_t culled = 0, full = 0, culled_cells = 0, full_cells = 0;
-  for (const Isometry3d& X :
-       Sweep(Isometry3d::Identity(), Vector3d::UnitZ(), pivot, {0.8, 0.5, 0.35, 0.25, 0.15, 0.05, -0.1}, 17)) {
+  for (const Isometry3d& X : Sweep(Isometry3d::Identity(), Vector3d::UnitZ(), pivot,
+                                   {0.8, 0.5, 0.35, 0.25, 0.15, 0.05, -0.1}, 17)) {
     for (const AccuracyLevel level : {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel}) {
       for (const bool residuals : {false, true}) {
         OracleRequest req;
@@ -199,8 +202,10 @@ TEST(OracleCull, DeepSamplesInsideAClosedJawAreCountedTheSame) {
   for (int i = 0; i < 24; ++i) {
     const Vector3d dir = Vector3d(u(rng), u(rng), u(rng)).normalized();
     Isometry3d X = Isometry3d::Identity();
-    X.linear() = Eigen::AngleAxisd(3.0 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
-    X.translation() = (i % 3 == 0 ? 0.5 : 1.6 + 0.9 * u(rng)) * dir;  // nested, or across the surface
+    X.linear() = Eigen::AngleAxisd(3.0 * u(rng), Vector3d(u(rng), u(rng), u(rng)).normalized())
+                     .toRotationMatrix();
+    X.translation() =
+        (i % 3 == 0 ? 0.5 : 1.6 + 0.9 * u(rng)) * dir;  // nested, or across the surface
     for (const AccuracyLevel level : {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel}) {
       OracleRequest req;
       req.level = level;
@@ -233,7 +238,8 @@ TEST(OracleCull, RealRegisteredBiteMatchesTheUnculledQuery) {
   for (const auto& v : lower->vertices) pivot += v;
   pivot /= static_cast<double>(lower->vertices.size());
   std::size_t culled = 0, full = 0;
-  for (const Isometry3d& X : Sweep(Isometry3d::Identity(), Vector3d::UnitY(), pivot, {0.5, 0.1, 0.0, -0.2}, 23)) {
+  for (const Isometry3d& X :
+       Sweep(Isometry3d::Identity(), Vector3d::UnitY(), pivot, {0.5, 0.1, 0.0, -0.2}, 23)) {
     for (const bool residuals : {false, true}) {
       OracleRequest req;
       req.residuals = residuals;

@@ -20,7 +20,8 @@
 namespace occlude::collision {
 namespace {
 
-constexpr AccuracyLevel kLevels[] = {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel, AccuracyLevel::kExact};
+constexpr AccuracyLevel kLevels[] = {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel,
+                                     AccuracyLevel::kExact};
 constexpr double kPi = 3.14159265358979323846;
 // Random poses per test (fewer in the sanitizer lane, where every query is ~30x slower).
 #ifdef OCCLUDE_SANITIZED
@@ -33,8 +34,8 @@ constexpr int kPoses = 12;
 // min_distance_mm's +inf for "nothing evaluated".
 void ExpectFinite(const OracleResult& r, const std::string& where) {
   SCOPED_TRACE(where);
-  for (const double v : {r.max_penetration_mm, r.penetration_area_mm2, r.contact_area_mm2, r.left_share,
-                         r.right_share, r.anterior_share, r.posterior_share}) {
+  for (const double v : {r.max_penetration_mm, r.penetration_area_mm2, r.contact_area_mm2,
+                         r.left_share, r.right_share, r.anterior_share, r.posterior_share}) {
     ASSERT_TRUE(std::isfinite(v)) << v;
     ASSERT_GE(v, 0.0);
   }
@@ -85,7 +86,8 @@ Eigen::Vector3d RandomUnit(std::mt19937& rng) {
   return v.norm() > 1e-9 ? Eigen::Vector3d(v.normalized()) : Eigen::Vector3d::UnitX();
 }
 
-Eigen::Isometry3d Rotation(double angle_rad, const Eigen::Vector3d& axis, const Eigen::Vector3d& pivot) {
+Eigen::Isometry3d Rotation(double angle_rad, const Eigen::Vector3d& axis,
+                           const Eigen::Vector3d& pivot) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = Eigen::AngleAxisd(angle_rad, axis).toRotationMatrix();
   X.translation() = pivot - X.linear() * pivot;
@@ -168,14 +170,15 @@ TEST(OracleRobustness, TinyRotationsChangeNothingMeasurable) {
     ASSERT_GT(at_bite.contact_area_mm2, 0.0);
     for (int i = 0; i < kPoses; ++i) {
       const double angle = std::pow(10.0, exponent(rng));
-      const OracleResult r = Query(*bite.oracle, Rotation(angle, RandomUnit(rng), bite.centre_L), level,
-                                   bite.centre_L, kWideBandMm);
+      const OracleResult r = Query(*bite.oracle, Rotation(angle, RandomUnit(rng), bite.centre_L),
+                                   level, bite.centre_L, kWideBandMm);
       ExpectFinite(r, "tiny rotation " + std::to_string(angle));
       // The exact distance is 1-Lipschitz in the sample position, the trilinear one
       // sqrt(3)-Lipschitz (each partial derivative is a corner difference over s).
       const double moved = std::sqrt(3.0) * angle * kSpanMm;
       EXPECT_NEAR(r.min_distance_mm, at_bite.min_distance_mm, moved + kFloatRoundingMm) << angle;
-      EXPECT_NEAR(r.max_penetration_mm, at_bite.max_penetration_mm, moved + kFloatRoundingMm) << angle;
+      EXPECT_NEAR(r.max_penetration_mm, at_bite.max_penetration_mm, moved + kFloatRoundingMm)
+          << angle;
     }
   }
 }
@@ -184,8 +187,8 @@ TEST(OracleRobustness, TinyRotationsChangeNothingMeasurable) {
 // rounding of the rotation matrix and of the floats; huge and near-half-turn angles stay finite.
 TEST(OracleRobustness, HugeRotationsStayFiniteAndWholeTurnsComeBack) {
   const Bite& bite = SyntheticBite();
-  const OracleResult at_bite =
-      Query(*bite.oracle, Eigen::Isometry3d::Identity(), AccuracyLevel::kSubVoxel, bite.centre_L, kWideBandMm);
+  const OracleResult at_bite = Query(*bite.oracle, Eigen::Isometry3d::Identity(),
+                                     AccuracyLevel::kSubVoxel, bite.centre_L, kWideBandMm);
   ASSERT_GT(at_bite.contact_area_mm2, 0.0);
   std::mt19937 rng(14);
   for (const double turns : {1.0, 3.0, 1e3, 1e5}) {
@@ -197,11 +200,13 @@ TEST(OracleRobustness, HugeRotationsStayFiniteAndWholeTurnsComeBack) {
     // 100 mm from the pivot by that angle times 100 mm (times sqrt(3), as above).
     const double tolerance = 1e-15 * angle * 100.0 * std::sqrt(3.0) + kFloatRoundingMm;
     EXPECT_NEAR(r.min_distance_mm, at_bite.min_distance_mm, tolerance) << turns;
-    EXPECT_NEAR(r.contact_area_mm2, at_bite.contact_area_mm2, 0.01 * at_bite.contact_area_mm2) << turns;
+    EXPECT_NEAR(r.contact_area_mm2, at_bite.contact_area_mm2, 0.01 * at_bite.contact_area_mm2)
+        << turns;
   }
   for (const double angle : {kPi, kPi - 1e-9, -kPi, 1e6, -1e6, 123456.789}) {
     for (const AccuracyLevel level : kLevels) {
-      ExpectFinite(Query(*bite.oracle, Rotation(angle, RandomUnit(rng), bite.centre_L), level, bite.centre_L),
+      ExpectFinite(Query(*bite.oracle, Rotation(angle, RandomUnit(rng), bite.centre_L), level,
+                         bite.centre_L),
                    "angle " + std::to_string(angle));
     }
   }
@@ -274,7 +279,8 @@ TEST(OracleRobustness, PartlyNestedJawsReportPenetration) {
     for (const AccuracyLevel level : kLevels) {
       const OracleResult r = Query(*n.small_in_large, X, level);
       ExpectFinite(r, "straddling pose " + std::to_string(i));
-      EXPECT_GT(r.penetration_area_mm2, 0.0) << "straddling pose " << i << " at " << ToString(level);
+      EXPECT_GT(r.penetration_area_mm2, 0.0)
+          << "straddling pose " << i << " at " << ToString(level);
       EXPECT_GT(r.max_penetration_mm, 0.0);
     }
   }
@@ -290,8 +296,8 @@ TEST(OracleRobustness, FullyNestedJawsAreReportedAsInterpenetrating) {
   for (const Eigen::Isometry3d& X : InsidePoses(kPoses, 15)) {
     for (const AccuracyLevel level : kLevels) {
       const OracleResult r = Query(*n.small_in_large, X, level);
-      EXPECT_TRUE(r.deep_samples > 0 || r.penetration_area_mm2 > 0) << "nested pose " << i << " at "
-                                                                   << ToString(level);
+      EXPECT_TRUE(r.deep_samples > 0 || r.penetration_area_mm2 > 0)
+          << "nested pose " << i << " at " << ToString(level);
     }
     ++i;
   }

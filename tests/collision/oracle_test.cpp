@@ -114,8 +114,9 @@ TEST_F(OracleBlockTest, ResidualGradientsMatchFiniteDifferences) {
     Eigen::Matrix<double, 6, 1> step = Eigen::Matrix<double, 6, 1>::Zero();
     step[k] = h;
     const Eigen::Matrix3d Rw =
-        Eigen::AngleAxisd(step.tail<3>().norm(), step.tail<3>().norm() > 0 ? step.tail<3>().normalized()
-                                                                           : Eigen::Vector3d::UnitX())
+        Eigen::AngleAxisd(step.tail<3>().norm(), step.tail<3>().norm() > 0
+                                                     ? step.tail<3>().normalized()
+                                                     : Eigen::Vector3d::UnitX())
             .toRotationMatrix();
     for (std::size_t i = 0; i < res.residuals.size(); i += 7) {
       const DistanceResidual& r = res.residuals[i];
@@ -138,10 +139,12 @@ TEST(OracleRobustnessTest, NestedFarAndRotatedPosesNeverGiveNaN) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 40; ++i) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = Eigen::AngleAxisd(3.1 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
-                     .toRotationMatrix();
+    X.linear() =
+        Eigen::AngleAxisd(3.1 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+            .toRotationMatrix();
     X.translation() = (i % 4 == 0 ? 0.0 : 6.0) * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    for (AccuracyLevel level : {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
+    for (AccuracyLevel level :
+         {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
       OracleRequest req;
       req.level = level;
       req.residuals = true;
@@ -186,7 +189,8 @@ TEST(OracleValidationTest, RejectsBadFieldBoundOptions) {
 TriangleMesh FineSheet(int n) {
   TriangleMesh m;
   for (int j = 0; j <= n; ++j) {
-    for (int i = 0; i <= n; ++i) m.vertices.emplace_back(-2.0 + 4.0 * i / n, 0.01, -2.0 + 4.0 * j / n);
+    for (int i = 0; i <= n; ++i)
+      m.vertices.emplace_back(-2.0 + 4.0 * i / n, 0.01, -2.0 + 4.0 * j / n);
   }
   const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(i + (n + 1) * j); };
   for (int j = 0; j < n; ++j) {
@@ -220,13 +224,16 @@ TEST(OracleSamplesTest, FineTrianglesAreMergedToTheSpacingKeepingAreaAndSurface)
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation().y() = 0.04;  // gap 0.05 mm: the whole sheet within the band
     oracle.Query(X, req, &res);
-    EXPECT_NEAR(res.contact_area_mm2, 16.0, 1e-4) << ToString(level);  // every triangle's area, once
+    EXPECT_NEAR(res.contact_area_mm2, 16.0, 1e-4)
+        << ToString(level);  // every triangle's area, once
     EXPECT_EQ(res.contact_samples, oracle.num_samples()) << ToString(level);
     // Merged samples are points of the sheet (members, not centroids between them).
-    EXPECT_NEAR(res.min_distance_mm, 0.05, level == AccuracyLevel::kExact ? 1e-6 : 0.01) << ToString(level);
+    EXPECT_NEAR(res.min_distance_mm, 0.05, level == AccuracyLevel::kExact ? 1e-6 : 0.01)
+        << ToString(level);
     X.translation().y() = -0.04;  // 0.03 mm into the slab
     oracle.Query(X, req, &res);
-    EXPECT_NEAR(res.max_penetration_mm, 0.03, level == AccuracyLevel::kExact ? 1e-6 : 0.01) << ToString(level);
+    EXPECT_NEAR(res.max_penetration_mm, 0.03, level == AccuracyLevel::kExact ? 1e-6 : 0.01)
+        << ToString(level);
     EXPECT_NEAR(res.penetration_area_mm2, 16.0, 1e-4) << ToString(level);
   }
 }

@@ -26,7 +26,8 @@ constexpr double kOffsetMm = 1e-5;
 constexpr double kFloatGradient = 1e-4;
 
 NarrowBandSdf SphereField(double s) {
-  auto mesh = std::make_shared<const io::TriangleMesh>(test::MakeSphere(V(0.3, -0.2, 0.1), 2.0, 24, 48));
+  auto mesh =
+      std::make_shared<const io::TriangleMesh>(test::MakeSphere(V(0.3, -0.2, 0.1), 2.0, 24, 48));
   VoxelizeOptions options;
   options.voxel_size_mm = s;
   options.classify_proximity = false;

@@ -220,9 +220,9 @@ TEST(SignedDistanceOpenMesh, SignsNearFacesAndOpenBoundary) {
       {V(-0.1, 0.5, 1.05), std::sqrt(0.01 + 0.0025)},  // rim of the x = 0 wall
       // Closest to the rim from the inner side: beyond the border of an open surface there
       // is no inside, so these count as outside (pseudo-normals alone would say inside).
-      {V(0.5, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},   // over the rim of the y = 0 wall
+      {V(0.5, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},     // over the rim of the y = 0 wall
       {V(0.5, 0.15, 1.05), std::sqrt(0.0225 + 0.0025)},  // above the open top, nearest a rim
-      {V(0.05, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},  // over the rim, near a corner
+      {V(0.05, 0.05, 1.1), std::sqrt(0.0025 + 0.01)},    // over the rim, near a corner
   };
   for (const Case& c : cases) {
     SignedDistanceSample s;
@@ -315,7 +315,8 @@ TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
   mesh.Append(test::MakeBox(V(0.8, -0.4, -0.3), V(2.0, 0.5, 0.6)));
   const double s = 0.1;
   const VoxelGrid grid = Grid(mesh, s);
-  const NarrowBandSdf sdf = NarrowBandSdf::Build(std::make_shared<const io::TriangleMesh>(mesh), grid, {});
+  const NarrowBandSdf sdf =
+      NarrowBandSdf::Build(std::make_shared<const io::TriangleMesh>(mesh), grid, {});
   const float depth = 0.05f, value = 0.03f;
   const VoxelGrid voxels = sdf.BandVoxelsWithin(depth, value);
   const Eigen::Vector3i shift = Eigen::Vector3i::Constant(sdf.band_key_shift());
@@ -337,12 +338,14 @@ TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
     for (const std::uint64_t k : set.surface_keys) {
       const Eigen::Vector3i c = MortonDecode(k);
       const Eigen::Vector3i v(c.x() / split, c.y() / split, c.z() / split);
-      ASSERT_TRUE(std::binary_search(voxels.surface_keys.begin(), voxels.surface_keys.end(), MortonEncode(v)));
+      ASSERT_TRUE(std::binary_search(voxels.surface_keys.begin(), voxels.surface_keys.end(),
+                                     MortonEncode(v)));
     }
     for (const std::uint64_t k : grid.surface_keys) {
       const Eigen::Vector3i v = MortonDecode(k) + shift;
       for (int o = 0; o < split * split * split; ++o) {
-        EXPECT_TRUE(in_set(split * v + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+        EXPECT_TRUE(
+            in_set(split * v + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
       }
     }
     NearSurfaceSampler sampler(mesh, 8);
@@ -350,7 +353,9 @@ TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
     for (int i = 0; i < 4000; ++i) {
       const V p = sampler.Next(sdf.band_mm());
       double d = 0.0;
-      if (!sdf.Interpolate(p, &d) || d < -static_cast<double>(depth) || d > static_cast<double>(value)) continue;
+      if (!sdf.Interpolate(p, &d) || d < -static_cast<double>(depth) ||
+          d > static_cast<double>(value))
+        continue;
       if (split == 1) {
         EXPECT_EQ(set.VoxelOf(p), grid.VoxelOf(p) + shift);
       }
@@ -358,7 +363,8 @@ TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
       ++inside;
     }
     EXPECT_GT(inside, 200);
-    const double volume = static_cast<double>(set.surface_keys.size()) * std::pow(set.voxel_size_mm, 3);
+    const double volume =
+        static_cast<double>(set.surface_keys.size()) * std::pow(set.voxel_size_mm, 3);
     EXPECT_LT(volume, previous_volume);
     previous_volume = volume;
   }

@@ -30,9 +30,11 @@ TEST(SphereTableTest, ChildOffsetIsAQuarterOfTheParentEdge) {
       const Eigen::Vector3d pc = NodeCenter(parent, parent_level, s);
       const double parent_r = SimpleRadius(std::ldexp(s, parent_level));
       for (int slot = 0; slot < 8; ++slot) {
-        const Eigen::Vector3i child = 2 * parent + Eigen::Vector3i(slot & 1, (slot >> 1) & 1, (slot >> 2) & 1);
+        const Eigen::Vector3i child =
+            2 * parent + Eigen::Vector3i(slot & 1, (slot >> 1) & 1, (slot >> 2) & 1);
         const Eigen::Vector3d truth = NodeCenter(child, parent_level - 1, s);
-        const Eigen::Vector3d derived = pc + ChildCenterOffset(s, parent_level) * ChildSlotSign(slot);
+        const Eigen::Vector3d derived =
+            pc + ChildCenterOffset(s, parent_level) * ChildSlotSign(slot);
         ASSERT_LT((derived - truth).norm(), kTol * std::ldexp(s, parent_level));
         const double child_edge = std::ldexp(s, parent_level - 1);
         for (const auto& corner : CubeCorners(derived, child_edge)) {
@@ -56,7 +58,8 @@ TEST(SphereTableTest, ParentLevelOffsetSTimes2ToLMinus1PutsChildrenOnParentCorne
   const Eigen::Vector3d wrong = pc + std::ldexp(s, parent_level - 1) * ChildSlotSign(7);
   const double child_edge = std::ldexp(s, parent_level - 1);
   double farthest = 0.0;
-  for (const auto& corner : CubeCorners(wrong, child_edge)) farthest = std::max(farthest, (corner - pc).norm());
+  for (const auto& corner : CubeCorners(wrong, child_edge))
+    farthest = std::max(farthest, (corner - pc).norm());
   EXPECT_GT(farthest, SimpleRadius(std::ldexp(s, parent_level)) * 1.4);
   // Same offset written with the child's level is the correct one.
   EXPECT_DOUBLE_EQ(std::ldexp(s, (parent_level - 1) - 1), ChildCenterOffset(s, parent_level));
@@ -81,9 +84,10 @@ TEST(SphereTableTest, EveryEntryEnclosesItsOccupiedChildCubesAndIsNoLargerThanSi
     }
     EXPECT_LE(u.radius, kCubeCircumradius + kTol) << "mask " << mask;
   }
-  EXPECT_NEAR(table[1].radius, kCubeCircumradius / 2, kTol);    // one child: its own circumsphere
-  EXPECT_NEAR(table[255].radius, kCubeCircumradius, kTol);      // all children: the simple sphere
-  EXPECT_NEAR(table[3].radius, std::sqrt(1.0 + 0.25 + 0.25) / 2, kTol);  // two along x: 1 x 1/2 x 1/2 box
+  EXPECT_NEAR(table[1].radius, kCubeCircumradius / 2, kTol);  // one child: its own circumsphere
+  EXPECT_NEAR(table[255].radius, kCubeCircumradius, kTol);    // all children: the simple sphere
+  EXPECT_NEAR(table[3].radius, std::sqrt(1.0 + 0.25 + 0.25) / 2,
+              kTol);  // two along x: 1 x 1/2 x 1/2 box
 }
 
 // Smallest enclosing ball by brute force over all 2-, 3- and 4-point supports.
@@ -105,7 +109,8 @@ double BruteForceMinRadius(const std::vector<Eigen::Vector3d>& pts) {
                               (2 * nn.squaredNorm()));
         for (std::size_t l = k + 1; l < n; ++l) {
           Eigen::Matrix3d m;
-          m << (pts[j] - pts[i]).transpose(), (pts[k] - pts[i]).transpose(), (pts[l] - pts[i]).transpose();
+          m << (pts[j] - pts[i]).transpose(), (pts[k] - pts[i]).transpose(),
+              (pts[l] - pts[i]).transpose();
           if (std::abs(m.determinant()) < 1e-12) continue;
           const Eigen::Vector3d rhs(0.5 * m.row(0).squaredNorm(), 0.5 * m.row(1).squaredNorm(),
                                     0.5 * m.row(2).squaredNorm());

@@ -67,8 +67,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TrianglePairsWithin(
     const Eigen::AlignedBox3d ba = box(a, i);
     for (std::uint32_t j = 0; j < b_in_a.num_triangles(); ++j) {
       if (ba.exteriorDistance(boxes_b[j]) > delta) continue;
-      if (TriangleTriangleDistance(a.corner(i, 0), a.corner(i, 1), a.corner(i, 2), b_in_a.corner(j, 0),
-                                   b_in_a.corner(j, 1), b_in_a.corner(j, 2))
+      if (TriangleTriangleDistance(a.corner(i, 0), a.corner(i, 1), a.corner(i, 2),
+                                   b_in_a.corner(j, 0), b_in_a.corner(j, 1), b_in_a.corner(j, 2))
               .distance <= delta) {
         out.emplace_back(i, j);
       }
@@ -85,15 +85,17 @@ TEST(SyntheticPairQueryTest, ModesAgreeAndNoTrianglePairWithinDeltaIsMissed) {
   const double delta = 0.1;
   for (int trial = 0; trial < 3; ++trial) {
     Eigen::Isometry3d jitter = Eigen::Isometry3d::Identity();
-    jitter.linear() = Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
-                          .toRotationMatrix();
+    jitter.linear() =
+        Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+            .toRotationMatrix();
     jitter.translation() = Eigen::Vector3d(0.1 * u(rng), 0.15 * u(rng) + 0.05, 0.1 * u(rng));
     const Eigen::Isometry3d X_LU = jitter * jaws.X_LU;
     CollisionRequest req;
     req.delta_mm = delta;
     req.exact = true;
     CollisionResult results[3];
-    const SphereMode modes[3] = {SphereMode::kSimple, SphereMode::kOptimized, SphereMode::kExplicit};
+    const SphereMode modes[3] = {SphereMode::kSimple, SphereMode::kOptimized,
+                                 SphereMode::kExplicit};
     for (int m = 0; m < 3; ++m) {
       req.spheres = modes[m];
       Collide(lower, upper, X_LU, req, &results[m]);
@@ -105,7 +107,8 @@ TEST(SyntheticPairQueryTest, ModesAgreeAndNoTrianglePairWithinDeltaIsMissed) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> found;
     for (const auto& c : results[2].contacts) found.insert({c.triangle_a, c.triangle_b});
     EXPECT_EQ(found.size(), brute.size()) << trial;
-    for (const auto& p : brute) ASSERT_TRUE(found.count(p)) << "missed " << p.first << "," << p.second;
+    for (const auto& p : brute)
+      ASSERT_TRUE(found.count(p)) << "missed " << p.first << "," << p.second;
   }
 }
 

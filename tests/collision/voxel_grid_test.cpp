@@ -3,7 +3,6 @@
 // proximity on the outward side, scaling with the voxel size, the memory
 // estimate, errors, determinism, and the real meshes when ../shared/data exists.
 #include "occlude/collision/voxel_grid.h"
-#include "occlude/io/mesh_io.h"
 
 #include <gtest/gtest.h>
 
@@ -18,6 +17,7 @@
 
 #include "occlude/collision/morton.h"
 #include "occlude/collision/triangle_box.h"
+#include "occlude/io/mesh_io.h"
 #include "test_common.h"
 
 namespace occlude::collision {

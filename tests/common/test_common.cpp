@@ -1,14 +1,14 @@
 // Implementation of the shared test helpers.
 #include "test_common.h"
 
+#include <grp.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <random>
 #include <stdexcept>
-
-#include <grp.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace occlude::test {
 
@@ -65,7 +65,8 @@ std::optional<std::string> RunUnprivileged(const std::function<std::string()>& b
   ::close(fds[1]);
   std::string out;
   char buffer[4096];
-  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<std::size_t>(n));
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
+    out.append(buffer, static_cast<std::size_t>(n));
   ::close(fds[0]);
   int status = 0;
   ::waitpid(pid, &status, 0);
@@ -111,8 +112,7 @@ io::TriangleMesh MakeBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   return m;
 }
 
-io::TriangleMesh MakeSphere(const Eigen::Vector3d& center, double radius, int rings,
-                            int segments) {
+io::TriangleMesh MakeSphere(const Eigen::Vector3d& center, double radius, int rings, int segments) {
   io::TriangleMesh m;
   const double pi = std::acos(-1.0);
   m.vertices.push_back(center + Eigen::Vector3d(0, 0, radius));
@@ -128,7 +128,8 @@ io::TriangleMesh MakeSphere(const Eigen::Vector3d& center, double radius, int ri
   m.vertices.push_back(center - Eigen::Vector3d(0, 0, radius));
   const int south = static_cast<int>(m.vertices.size()) - 1;
   auto ring_vertex = [&](int r, int s) { return 1 + (r - 1) * segments + (s % segments); };
-  for (int s = 0; s < segments; ++s) m.triangles.emplace_back(0, ring_vertex(1, s), ring_vertex(1, s + 1));
+  for (int s = 0; s < segments; ++s)
+    m.triangles.emplace_back(0, ring_vertex(1, s), ring_vertex(1, s + 1));
   for (int r = 1; r < rings - 1; ++r) {
     for (int s = 0; s < segments; ++s) {
       m.triangles.emplace_back(ring_vertex(r, s), ring_vertex(r + 1, s), ring_vertex(r + 1, s + 1));

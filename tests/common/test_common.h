@@ -51,8 +51,9 @@ inline constexpr double kExactMm = 1e-9;
 }  // namespace occlude::test
 
 /// Skips the current test, saying why, when the shared real-data folder is absent.
-#define OCCLUDE_REQUIRE_CASE(var, name)                                              \
-  const auto var##_opt = ::occlude::test::SharedCase(name);                          \
-  if (!var##_opt) GTEST_SKIP() << "shared data case '" << (name) << "' not found (" \
-                               << "set OCCLUDE_DATA_DIR or place ../shared/data)";   \
+#define OCCLUDE_REQUIRE_CASE(var, name)                               \
+  const auto var##_opt = ::occlude::test::SharedCase(name);           \
+  if (!var##_opt)                                                     \
+    GTEST_SKIP() << "shared data case '" << (name) << "' not found (" \
+                 << "set OCCLUDE_DATA_DIR or place ../shared/data)";  \
   const std::filesystem::path var = *var##_opt

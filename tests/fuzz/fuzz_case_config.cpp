@@ -26,7 +26,8 @@ void Require(bool condition) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  const auto dir = std::filesystem::temp_directory_path() / ("occlude-fuzz-config-" + std::to_string(::getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("occlude-fuzz-config-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "teeth");
   for (const char* name : {"lower.stl", "upper.stl", "teeth/Tooth_14.stl", "teeth/Tooth_3.stl"}) {
     std::ofstream(dir / name) << "solid x\nendsolid x\n";

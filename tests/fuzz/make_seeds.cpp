@@ -26,7 +26,8 @@ TriangleMesh Box(double size) {
   for (int i = 0; i < 8; ++i) {
     m.vertices.emplace_back((i & 1) ? size : 0.0, (i & 2) ? size : 0.0, (i & 4) ? size : 0.0);
   }
-  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   for (const auto& f : faces) {
     m.triangles.emplace_back(f[0], f[1], f[2]);
     m.triangles.emplace_back(f[0], f[2], f[3]);
@@ -55,9 +56,11 @@ void StlSeeds(const fs::path& dir) {
   std::memcpy(solid_header.data(), "solid box", 9);  // binary, although it starts with "solid"
   Put(dir / "box-binary-solid-header.stl", solid_header);
   const std::string facet =
-      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 10 0 0\n   vertex 0 10 0\n  endloop\n"
+      " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 10 0 0\n   vertex 0 10 0\n  "
+      "endloop\n"
       " endfacet\n";
-  Put(dir / "two-solids.stl", "solid a\n" + facet + "endsolid a\nsolid b\n" + facet + "endsolid b\n");
+  Put(dir / "two-solids.stl",
+      "solid a\n" + facet + "endsolid a\nsolid b\n" + facet + "endsolid b\n");
   Put(dir / "crlf-upper-case.stl",
       "SOLID t\r\n FACET NORMAL nan 0 1\r\n OUTER LOOP\r\n VERTEX 0 0 0\r\n VERTEX +1e1 0 0\r\n"
       " VERTEX 0 1E1 0\r\n ENDLOOP\r\n ENDFACET\r\nENDSOLID\r\n");
@@ -69,8 +72,10 @@ void RegressionSeeds(const fs::path& stl, const fs::path& ply, const fs::path& c
       "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1e300 1e300 0\n"
       "   vertex 1e300 1e300 1e-300\n  endloop\n endfacet\nendsolid t\n");
   Put(ply / "regression-empty-element.ply",
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "element junk 100000000000\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
+      "element junk 100000000000\nelement face 1\nproperty list uchar int "
+      "vertex_indices\nend_header\n"
       "0 0 0\n10 0 0\n0 10 0\n3 0 1 2\n");
   Put(config / "regression-newline.toml", "[case]\nname = t\n\"a\\nb\" = 1\n");
 }
@@ -81,15 +86,19 @@ void ObjSeeds(const fs::path& dir) {
   obj << "# box\nmtllib box.mtl\no box\n";
   for (const auto& v : box.vertices) obj << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << "\n";
   obj << "vn 0 0 1\nvt 0 0\n";
-  for (const auto& t : box.triangles) obj << "f " << t[0] + 1 << "/1/1 " << t[1] + 1 << "//1 " << t[2] + 1 << "\n";
+  for (const auto& t : box.triangles)
+    obj << "f " << t[0] + 1 << "/1/1 " << t[1] + 1 << "//1 " << t[2] + 1 << "\n";
   Put(dir / "box.obj", obj.str());
-  Put(dir / "quad-negative.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0 1.0\nf -4 -3 -2 -1\ng side\ns off\nl 1 2\n");
+  Put(dir / "quad-negative.obj",
+      "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0 1.0\nf -4 -3 -2 -1\ng side\ns off\nl 1 2\n");
   Put(dir / "pentagon.obj", "v 0 0 0\nv 10 0 0\nv 12 8 0\nv 5 12 0\nv -2 8 0\nf 1 2 3 4 5\n");
 }
 
 std::string PlyHeader(const std::string& format, const std::string& extra) {
-  return "ply\nformat " + format + " 1.0\ncomment seed\nelement vertex 8\nproperty float x\nproperty float y\n"
-         "property float z\n" + extra + "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
+  return "ply\nformat " + format +
+         " 1.0\ncomment seed\nelement vertex 8\nproperty float x\nproperty float y\n"
+         "property float z\n" +
+         extra + "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
 }
 
 void Append(std::string* out, const void* p, std::size_t n, bool big_endian) {
@@ -126,14 +135,17 @@ void PlySeeds(const fs::path& dir) {
   Put(dir / "box-le.ply", BinaryPly(false));
   Put(dir / "box-be.ply", BinaryPly(true));
   Put(dir / "faces-first.ply",
-      "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar uint vertex_index\nelement vertex 3\n"
-      "property double x\nproperty double y\nproperty double z\nelement edge 1\nproperty int vertex1\n"
+      "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar uint vertex_index\nelement "
+      "vertex 3\n"
+      "property double x\nproperty double y\nproperty double z\nelement edge 1\nproperty int "
+      "vertex1\n"
       "end_header\n3 0 1 2\n0 0 0\n10 0 0\n0 10 0\n0\n");
 }
 
 void ConfigSeeds(const fs::path& dir) {
   Put(dir / "minimal.toml", "[lower]\nfile = \"lower.stl\"\n[upper]\nfile = \"upper.stl\"\n");
-  Put(dir / "synthetic.toml", "[synthetic]\ntriangles = 5000\nseed = 3\n[output]\nfolder = \"out\"\n");
+  Put(dir / "synthetic.toml",
+      "[synthetic]\ntriangles = 5000\nseed = 3\n[output]\nfolder = \"out\"\n");
   Put(dir / "parts.toml",
       "[case]\nname = \"parts\"\nunits = \"cm\"\nup_axis = \"-z\"\n[lower]\nfile = \"lower.stl\"\n"
       "[upper]\nparts = [\"teeth/Tooth_14.stl\", \"teeth/Tooth_3.stl\"]\n");
@@ -142,7 +154,8 @@ void ConfigSeeds(const fs::path& dir) {
       "[lower]\nfile = \"lower.stl\"\n[upper]\nfile = \"upper.stl\"\n"
       "[accuracy]\naccuracy_mm = 0.02\nvoxel_mm = 0.25\nsample_spacing_mm = 0.2\n"
       "[contact]\nband_mm = 0.2\nmax_penetration_mm = 0.0\n"
-      "[solver]\nname = \"ceres\"\nstarts = 7\nseed = 42\nthreads = 2\nproposals = 5\nmax_seconds = 12.5\n"
+      "[solver]\nname = \"ceres\"\nstarts = 7\nseed = 42\nthreads = 2\nproposals = 5\nmax_seconds "
+      "= 12.5\n"
       "[solver.options]\nftol_rel = 1e-6\nlocal = \"ceres\"\npolish = true\nevaluations = 500\n"
       "[bounds]\ntx_mm = [-1.0, 2.0]\nrz_deg = [-4.5, 4.5]\nlocked = [\"rx\", \"ry\"]\n"
       "[start]\ntranslation_mm = [0.5, -1, 0]\nrotation_deg = [1, 2, 3]\npivot_mm = [1, 2, 3]\n"

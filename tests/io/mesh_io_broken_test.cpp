@@ -72,8 +72,9 @@ TEST_F(BrokenFileTest, EmptyFile) { ExpectRejected(Write("empty.stl", ""), "empt
 TEST_F(BrokenFileTest, UnreadableFile) {
   const fs::path file = Write("secret.stl", BoxStl());
   fs::permissions(file, fs::perms::none);
-  fs::permissions(dir_.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                   fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(dir_.path(), fs::perms::owner_all | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read |
+                                   fs::perms::others_exec);
   std::string why;
   const auto message = test::RunUnprivileged(
       [&] {
@@ -174,9 +175,10 @@ TEST_F(BrokenFileTest, AsciiStlWithInfinity) {
 // Regression (fuzz_stl's contract): corners of 1e300 mm made the cross product
 // inf - inf = NaN, so the triangle was neither dropped as degenerate nor usable.
 TEST_F(BrokenFileTest, AsciiStlWithAbsurdCoordinates) {
-  ExpectRejected(Write("big.stl", "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
-                                  "   vertex 1e300 1e300 0\n   vertex 1e300 1e300 1e-300\n  endloop\n"
-                                  " endfacet\nendsolid t\n"),
+  ExpectRejected(Write("big.stl",
+                       "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                       "   vertex 1e300 1e300 0\n   vertex 1e300 1e300 1e-300\n  endloop\n"
+                       " endfacet\nendsolid t\n"),
                  "a vertex coordinate of 1e+300 mm is beyond the +-1e15 mm");
   // In metres, 1e13 m is 1e16 mm: also beyond.
   try {

@@ -2,10 +2,9 @@
 // triangle counts, mm-scale bounds, load time, and a jaw from per-tooth files.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <set>
 

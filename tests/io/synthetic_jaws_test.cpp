@@ -421,14 +421,14 @@ TEST_P(SyntheticPairTest, ArchDimensionsArePlausible) {
   EXPECT_GT(UpperInL(pair_, 0.0).Bounds().center().y(), pair_.lower_L.Bounds().center().y());
 }
 
-INSTANTIATE_TEST_SUITE_P(SyntheticBudgetsAndSeeds, SyntheticPairTest,
-                         ::testing::Combine(::testing::Values(std::size_t{5000},
-                                                              std::size_t{20000}),
-                                            ::testing::Values(1u, 2u, 7u)),
-                         [](const ::testing::TestParamInfo<SyntheticPairTest::ParamType>& param_info) {
-                           return "triangles" + std::to_string(std::get<0>(param_info.param)) +
-                                  "_seed" + std::to_string(std::get<1>(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    SyntheticBudgetsAndSeeds, SyntheticPairTest,
+    ::testing::Combine(::testing::Values(std::size_t{5000}, std::size_t{20000}),
+                       ::testing::Values(1u, 2u, 7u)),
+    [](const ::testing::TestParamInfo<SyntheticPairTest::ParamType>& param_info) {
+      return "triangles" + std::to_string(std::get<0>(param_info.param)) + "_seed" +
+             std::to_string(std::get<1>(param_info.param));
+    });
 
 // ------------------------------------------------------------------ self-intersection
 

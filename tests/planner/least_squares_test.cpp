@@ -36,10 +36,12 @@ void CheckJacobian(const SurfaceResiduals& model, const PoseParameters& at) {
     model.Evaluate(minus, &rm);
     for (Eigen::Index i = 0; i < r0.size(); ++i) {
       const double fwd = (rp[i] - r0[i]) / kStep, bwd = (r0[i] - rm[i]) / kStep;
-      if (std::abs(fwd - bwd) > kJacobianTolerance) continue;  // a kink or voxel face inside the step
+      if (std::abs(fwd - bwd) > kJacobianTolerance)
+        continue;  // a kink or voxel face inside the step
       ++checked;
       if (std::abs(J(i, k)) > 1e-6) ++nonzero;
-      EXPECT_NEAR(J(i, k), 0.5 * (fwd + bwd), kJacobianTolerance) << "residual " << i << " dof " << k;
+      EXPECT_NEAR(J(i, k), 0.5 * (fwd + bwd), kJacobianTolerance)
+          << "residual " << i << " dof " << k;
     }
   }
   EXPECT_GT(checked, 6 * model.size() / 2);
@@ -62,7 +64,8 @@ TEST(LeastSquaresTest, AnalyticJacobianMatchesNumericAwayFromReference) {
   offset.rotation_deg = Eigen::Vector3d(1.5, -2.0, 1.0);
   // Reference displaced so that the bite is reached at non-zero parameters.
   const Eigen::Isometry3d bite = Eigen::Translation3d(-0.05 * c.pair.occlusal_axis_L) * c.pair.X_LU;
-  const Eigen::Isometry3d X_ref = ComposePose(offset, c.pivot_L, Eigen::Isometry3d::Identity()).inverse() * bite;
+  const Eigen::Isometry3d X_ref =
+      ComposePose(offset, c.pivot_L, Eigen::Isometry3d::Identity()).inverse() * bite;
   const Eigen::Vector3d pivot_ref = c.pivot_L;
   const SurfaceResiduals model(stage, bite, X_ref, pivot_ref, ResidualSettings{}, 400);
   const PoseParameters at = DecomposePose(bite, pivot_ref, X_ref);

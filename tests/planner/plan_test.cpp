@@ -45,7 +45,8 @@ TEST_P(SolverReturnTest, ReturnsNearGroundTruthFromPerturbedStart) {
   EXPECT_TRUE(p.X_LU.matrix().allFinite());
   // Ceres' rounds of solve and settle end converged or by their round limit, which the
   // status and the message say (not the evaluation budget: far from spent here).
-  EXPECT_TRUE(p.status == SolveStatus::kConverged || p.status == SolveStatus::kMaxIterations) << ToString(p.status);
+  EXPECT_TRUE(p.status == SolveStatus::kConverged || p.status == SolveStatus::kMaxIterations)
+      << ToString(p.status);
   EXPECT_LT(p.evaluations, req.max_evaluations);
   if (p.status == SolveStatus::kMaxIterations) {
     EXPECT_NE(p.message.find("rounds of solve and settle"), std::string::npos) << p.message;
@@ -87,7 +88,8 @@ TEST(PlanTest, NloptSolversStayFeasibleAndMostlyReturn) {
       EXPECT_TRUE(p.X_LU.matrix().allFinite());
       EXPECT_GT(p.evaluations, 10);
       const PoseError e = ComparePoses(p.X_LU, c.pair.X_LU, c.points_U);
-      returned += e.translation_mm <= kReturnToleranceMm && e.rotation_deg <= kReturnToleranceDeg ? 1 : 0;
+      returned +=
+          e.translation_mm <= kReturnToleranceMm && e.rotation_deg <= kReturnToleranceDeg ? 1 : 0;
     }
     if (kVariants == 3) {
       EXPECT_GE(returned, 1) << ToString(kind);
@@ -116,8 +118,10 @@ TEST(PlanTest, BoundsRespected) {
     ASSERT_FALSE(res.proposals.empty());
     const PoseParameters& p = res.proposals.front().params;
     for (int i = 0; i < 3; ++i) {
-      EXPECT_GE(p.translation_mm[i], req.lower_bound.translation_mm[i] - 1e-9) << ToString(kind) << i;
-      EXPECT_LE(p.translation_mm[i], req.upper_bound.translation_mm[i] + 1e-9) << ToString(kind) << i;
+      EXPECT_GE(p.translation_mm[i], req.lower_bound.translation_mm[i] - 1e-9)
+          << ToString(kind) << i;
+      EXPECT_LE(p.translation_mm[i], req.upper_bound.translation_mm[i] + 1e-9)
+          << ToString(kind) << i;
       // The rotation vector's norm bounds each component of the composed rotation.
       EXPECT_LE(std::abs(p.rotation_deg[i]), 0.5 + 1e-6) << ToString(kind) << i;
     }
@@ -139,7 +143,8 @@ TEST(PlanTest, ProposalsAreDistinctAndSorted) {
   const auto& pts = Synthetic().points_U;
   for (std::size_t i = 0; i < res.proposals.size(); ++i) {
     for (std::size_t j = i + 1; j < res.proposals.size(); ++j) {
-      EXPECT_TRUE(DistinctPoses(res.proposals[i].X_LU, res.proposals[j].X_LU, pts, req)) << i << " " << j;
+      EXPECT_TRUE(DistinctPoses(res.proposals[i].X_LU, res.proposals[j].X_LU, pts, req))
+          << i << " " << j;
       if (res.proposals[i].evaluation.feasible && res.proposals[j].evaluation.feasible) {
         EXPECT_LE(res.proposals[i].seat_cost, res.proposals[j].seat_cost);
       }
@@ -225,7 +230,8 @@ TEST(PlanTest, RequestErrorsNameTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("solver"), std::string::npos) << e.what();
   }
-  for (SolverKind k : {SolverKind::kNloptLocal, SolverKind::kNloptGlobal, SolverKind::kCeres, SolverKind::kCoarseToFine}) {
+  for (SolverKind k : {SolverKind::kNloptLocal, SolverKind::kNloptGlobal, SolverKind::kCeres,
+                       SolverKind::kCoarseToFine}) {
     EXPECT_EQ(SolverKindFromName(ToString(k)), k);
   }
   EXPECT_THROW(Plan({}, PlanRequest{}), std::invalid_argument);
@@ -246,7 +252,8 @@ TEST(EvaluatePathTest, EndsAtBothPosesAndEvaluatesEachPoint) {
   const PlanRequest request;
   Eigen::Isometry3d X_open = c.pair.X_LU;
   X_open.pretranslate(0.5 * c.pair.occlusal_axis_L);
-  const std::vector<PathPoint> path = EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 5);
+  const std::vector<PathPoint> path =
+      EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 5);
   ASSERT_EQ(path.size(), 6u);
   EXPECT_TRUE(path.front().X_LU.isApprox(c.pair.X_LU, 1e-12));
   EXPECT_TRUE(path.back().X_LU.isApprox(X_open, 1e-12));
@@ -255,11 +262,13 @@ TEST(EvaluatePathTest, EndsAtBothPosesAndEvaluatesEachPoint) {
     EXPECT_NEAR(p.from_start.rotation_deg, 0.0, 1e-6) << p.s;
     const PoseEvaluation direct = EvaluatePose(stage, p.X_LU, request);
     EXPECT_DOUBLE_EQ(p.evaluation.contact_area_mm2, direct.contact_area_mm2) << p.s;
-    EXPECT_DOUBLE_EQ(p.evaluation.constrained_penetration_mm, direct.constrained_penetration_mm) << p.s;
+    EXPECT_DOUBLE_EQ(p.evaluation.constrained_penetration_mm, direct.constrained_penetration_mm)
+        << p.s;
   }
   EXPECT_GT(path.front().evaluation.contact_area_mm2, 1.0);
   EXPECT_EQ(path.back().evaluation.contact_area_mm2, 0.0);
-  EXPECT_THROW(EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 0), std::invalid_argument);
+  EXPECT_THROW(EvaluatePath(stage, c.pair.X_LU, X_open, c.pivot_L, c.points_U, request, 0),
+               std::invalid_argument);
 }
 
 }  // namespace

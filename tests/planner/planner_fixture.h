@@ -17,7 +17,7 @@ namespace occlude::planner::test {
 struct SyntheticCase {
   io::SyntheticJawPair pair;
   std::shared_ptr<const io::TriangleMesh> lower, upper;
-  OwnedSchedule schedule;         ///< 0.5 mm subvoxel (coarser blurs the locking inclines)
+  OwnedSchedule schedule;  ///< 0.5 mm subvoxel (coarser blurs the locking inclines)
   std::vector<Eigen::Vector3d> points_U;
   Eigen::Vector3d pivot_L;
 };
@@ -44,8 +44,10 @@ inline const SyntheticCase& Synthetic() {
 inline const OracleSchedule& CoarseToFine() {
   static const OracleSchedule* stages = [] {
     const SyntheticCase& c = Synthetic();
-    static const collision::JawOracle coarse(c.lower, c.upper, StageOracleOptions({}, {0.8, 0.5}, 0));
-    return new OracleSchedule{{&coarse, collision::AccuracyLevel::kSubVoxel}, c.schedule.stages.back()};
+    static const collision::JawOracle coarse(c.lower, c.upper,
+                                             StageOracleOptions({}, {0.8, 0.5}, 0));
+    return new OracleSchedule{{&coarse, collision::AccuracyLevel::kSubVoxel},
+                              c.schedule.stages.back()};
   }();
   return *stages;
 }
@@ -54,7 +56,8 @@ inline const OracleSchedule& CoarseToFine() {
 inline PlanRequest PerturbedRequest(SolverKind solver, double t_mm, double r_deg, int variant = 0) {
   const SyntheticCase& c = Synthetic();
   PoseParameters perturb;
-  const Eigen::Vector3d dirs[3] = {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, 0.5, 1), Eigen::Vector3d(0.3, -1, -1)};
+  const Eigen::Vector3d dirs[3] = {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, 0.5, 1),
+                                   Eigen::Vector3d(0.3, -1, -1)};
   perturb.translation_mm = t_mm * dirs[variant % 3].normalized();
   perturb.rotation_deg = r_deg * dirs[(variant + 1) % 3].normalized();
   PlanRequest req;

@@ -8,8 +8,8 @@ namespace occlude::collision {
 
 /// Result of ClosestPointOnTriangle.
 struct TrianglePoint {
-  Eigen::Vector3d point;       ///< closest point on the (closed) triangle
-  Eigen::Vector3d barycentric; ///< weights of a, b, c (non-negative, sum 1)
+  Eigen::Vector3d point;        ///< closest point on the (closed) triangle
+  Eigen::Vector3d barycentric;  ///< weights of a, b, c (non-negative, sum 1)
   double squared_distance = 0.0;
 };
 
@@ -21,7 +21,7 @@ TrianglePoint ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vect
 /// Closest points between segments [p0, p1] and [q0, q1]: returns the squared
 /// distance and writes the parameters s, t in [0, 1] of the closest points.
 double ClosestPointsSegmentSegment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                                   const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
-                                   double* s, double* t);
+                                   const Eigen::Vector3d& q0, const Eigen::Vector3d& q1, double* s,
+                                   double* t);
 
 }  // namespace occlude::collision

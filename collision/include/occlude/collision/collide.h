@@ -27,7 +27,7 @@ namespace occlude::collision {
 
 struct CollisionRequest {
   SphereMode spheres = SphereMode::kExplicit;  ///< sphere variant used by the descent
-  double delta_mm = 0.0;           ///< contact tolerance, mm (>= 0); 0 = overlap only
+  double delta_mm = 0.0;                       ///< contact tolerance, mm (>= 0); 0 = overlap only
   bool first_only = false;         ///< boolean query: stop at the first pair (pairs has <= 1)
   std::size_t max_node_tests = 0;  ///< work budget in sphere-pair tests; 0 = unlimited
   bool exact = false;              ///< refine the voxel pairs to triangle pairs within delta
@@ -53,19 +53,19 @@ struct VoxelPair {
 struct TriangleContact {
   std::uint32_t triangle_a = 0;
   std::uint32_t triangle_b = 0;
-  double distance_mm = 0.0;   ///< Euclidean distance; 0 when intersecting
+  double distance_mm = 0.0;                            ///< Euclidean distance; 0 when intersecting
   Eigen::Vector3d p_A_on_a = Eigen::Vector3d::Zero();  ///< closest point on a, in A
   Eigen::Vector3d p_A_on_b = Eigen::Vector3d::Zero();  ///< closest point on b, in A
   bool intersecting = false;
 };
 
 struct CollisionResult {
-  bool overlap = false;         ///< at least one leaf pair found
-  bool complete = true;         ///< false when the work budget stopped the descent early
-  std::size_t node_tests = 0;   ///< sphere-pair tests performed
-  std::size_t leaf_tests = 0;   ///< exact voxel-cube tests performed
-  std::size_t bound_tests = 0;  ///< distance-bound tests performed (request.distance_bound)
-  std::vector<VoxelPair> pairs; ///< in traversal order (not sorted)
+  bool overlap = false;          ///< at least one leaf pair found
+  bool complete = true;          ///< false when the work budget stopped the descent early
+  std::size_t node_tests = 0;    ///< sphere-pair tests performed
+  std::size_t leaf_tests = 0;    ///< exact voxel-cube tests performed
+  std::size_t bound_tests = 0;   ///< distance-bound tests performed (request.distance_bound)
+  std::vector<VoxelPair> pairs;  ///< in traversal order (not sorted)
 
   // Filled when request.exact:
   std::vector<TriangleContact> contacts;  ///< unique triangle pairs within delta, sorted by (a, b)
@@ -73,8 +73,8 @@ struct CollisionResult {
   /// Smallest distance over the triangle pairs within delta; +inf when there is none
   /// (the meshes are then farther apart than delta, or the budget cut the search).
   double min_distance_mm = std::numeric_limits<double>::infinity();
-  TriangleContact closest;                ///< the pair attaining min_distance_mm, if finite
-  std::size_t triangle_tests = 0;         ///< unique triangle pairs examined
+  TriangleContact closest;         ///< the pair attaining min_distance_mm, if finite
+  std::size_t triangle_tests = 0;  ///< unique triangle pairs examined
 
   void Clear();
 };

@@ -42,7 +42,9 @@ namespace detail {
 inline constexpr int kBoundBrickBits = 3;  ///< 8 cells per brick and axis
 inline constexpr int kBoundBrickEdge = 1 << kBoundBrickBits;
 /// Cell (x, y, z) (each 0..7) of a brick: x + 8 y + 64 z.
-inline int BoundCellIndex(int x, int y, int z) { return x | y << kBoundBrickBits | z << (2 * kBoundBrickBits); }
+inline int BoundCellIndex(int x, int y, int z) {
+  return x | y << kBoundBrickBits | z << (2 * kBoundBrickBits);
+}
 /// floor(x) for |x| < 2^31 without a libm call.
 inline int FloorInt(double x) {
   const int t = static_cast<int>(x);  // truncation towards zero
@@ -51,7 +53,8 @@ inline int FloorInt(double x) {
 /// Hash key of brick coordinates b (each in [-2^20, 2^20)).
 inline std::uint64_t BoundBrickKey(const Eigen::Vector3i& b) {
   constexpr std::int64_t kBias = std::int64_t{1} << 20;
-  return static_cast<std::uint64_t>(b.x() + kBias) << 42 | static_cast<std::uint64_t>(b.y() + kBias) << 21 |
+  return static_cast<std::uint64_t>(b.x() + kBias) << 42 |
+         static_cast<std::uint64_t>(b.y() + kBias) << 21 |
          static_cast<std::uint64_t>(b.z() + kBias);
 }
 }  // namespace detail
@@ -104,17 +107,20 @@ class DistanceBound {
   /// first (a descent calls it for all children before testing them, so that
   /// their cache misses overlap). No effect on any answer.
   void Prefetch(const Eigen::Vector3d& q0, double radius) const {
-    if (levels_.empty() || !(std::abs(q0.x()) < (1 << 22) && std::abs(q0.y()) < (1 << 22) && std::abs(q0.z()) < (1 << 22))) {
+    if (levels_.empty() || !(std::abs(q0.x()) < (1 << 22) && std::abs(q0.y()) < (1 << 22) &&
+                             std::abs(q0.z()) < (1 << 22))) {
       return;
     }
     const Level& level = levels_[FirstLevel(radius)];
     const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
     const int cx = detail::FloorInt(qx), cy = detail::FloorInt(qy), cz = detail::FloorInt(qz);
-    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits,
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits,
+                                                             cy >> detail::kBoundBrickBits,
                                                              cz >> detail::kBoundBrickBits));
     constexpr int m = detail::kBoundBrickEdge - 1;
     if (i != detail::KeyIndexHash::kNotFound) {
-      __builtin_prefetch(&level.bricks[i][static_cast<std::size_t>(detail::BoundCellIndex(cx & m, cy & m, cz & m))]);
+      __builtin_prefetch(&level.bricks[i][static_cast<std::size_t>(
+          detail::BoundCellIndex(cx & m, cy & m, cz & m))]);
     }
   }
   const Eigen::Vector3d& origin() const { return origin_; }
@@ -140,7 +146,7 @@ class DistanceBound {
   struct Level {
     double s = 0.0;  ///< cell edge, mm
     double inv_s = 0.0;
-    double s2 = 0.0;  ///< s^2
+    double s2 = 0.0;     ///< s^2
     double scale = 1.0;  ///< the finest level's cell edge / s = 2^-shift
     int shift = 0;       ///< octree levels above the finest level
     double cap_mm = 0.0;
@@ -160,8 +166,10 @@ class DistanceBound {
       const auto x = static_cast<std::uint32_t>(b.x() - table_lo.x());
       const auto y = static_cast<std::uint32_t>(b.y() - table_lo.y());
       const auto z = static_cast<std::uint32_t>(b.z() - table_lo.z());
-      const auto nx = static_cast<std::uint32_t>(table_dims.x()), ny = static_cast<std::uint32_t>(table_dims.y());
-      if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(table_dims.z())) return detail::KeyIndexHash::kNotFound;
+      const auto nx = static_cast<std::uint32_t>(table_dims.x()),
+                 ny = static_cast<std::uint32_t>(table_dims.y());
+      if (x >= nx || y >= ny || z >= static_cast<std::uint32_t>(table_dims.z()))
+        return detail::KeyIndexHash::kNotFound;
       return table[x + nx * (static_cast<std::size_t>(y) + ny * static_cast<std::size_t>(z))];
     }
 
@@ -190,13 +198,17 @@ inline DistanceBound::Probe DistanceBound::Probe3(const Eigen::Vector3d& q0, dou
   for (std::size_t l = first; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
     const double qx = q0.x() * level.scale, qy = q0.y() * level.scale, qz = q0.z() * level.scale;
-    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange)) return probe;  // also NaN
+    if (!(std::abs(qx) < kRange && std::abs(qy) < kRange && std::abs(qz) < kRange))
+      return probe;  // also NaN
     const int cx = detail::FloorInt(qx), cy = detail::FloorInt(qy), cz = detail::FloorInt(qz);
     const double ox = qx - cx - 0.5, oy = qy - cy - 0.5, oz = qz - cz - 0.5;
-    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits, cy >> detail::kBoundBrickBits, cz >> detail::kBoundBrickBits));
-    const std::uint8_t value =
-        i == detail::KeyIndexHash::kNotFound ? level.cap
-                                             : level.bricks[i][static_cast<std::size_t>(detail::BoundCellIndex(cx & m, cy & m, cz & m))];
+    const std::uint32_t i = level.BrickIndex(Eigen::Vector3i(cx >> detail::kBoundBrickBits,
+                                                             cy >> detail::kBoundBrickBits,
+                                                             cz >> detail::kBoundBrickBits));
+    const std::uint8_t value = i == detail::KeyIndexHash::kNotFound
+                                   ? level.cap
+                                   : level.bricks[i][static_cast<std::size_t>(
+                                         detail::BoundCellIndex(cx & m, cy & m, cz & m))];
     // m - |offset| s > radius without the square root: m - radius > 0 and
     // (m - radius)^2 > |offset|^2 s^2.
     const double margin = level.m_mm[value] - radius;

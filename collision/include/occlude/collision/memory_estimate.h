@@ -46,8 +46,7 @@ MemoryEstimate EstimateNarrowBandSdfMemory(const io::TriangleMesh& mesh, double 
 /// JawOracle(lower_L, upper_U, options): both trees, the lower's distance
 /// field and the upper's samples.
 MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L,
-                                    const io::TriangleMesh& upper_U,
-                                    const OracleOptions& options);
+                                    const io::TriangleMesh& upper_U, const OracleOptions& options);
 
 /// Physical memory of the machine, or the cgroup's memory limit when that is
 /// lower (containers); 0 when unknown.

@@ -38,7 +38,9 @@ inline std::uint64_t MortonEncode(std::int32_t x, std::int32_t y, std::int32_t z
          detail::SpreadBits3(static_cast<std::uint64_t>(y)) << 1 |
          detail::SpreadBits3(static_cast<std::uint64_t>(z)) << 2;
 }
-inline std::uint64_t MortonEncode(const Eigen::Vector3i& c) { return MortonEncode(c.x(), c.y(), c.z()); }
+inline std::uint64_t MortonEncode(const Eigen::Vector3i& c) {
+  return MortonEncode(c.x(), c.y(), c.z());
+}
 
 inline Eigen::Vector3i MortonDecode(std::uint64_t code) {
   return Eigen::Vector3i(static_cast<int>(detail::CompactBits3(code)),

@@ -23,12 +23,12 @@
 namespace occlude::collision {
 
 struct Octree {
-  int top_level = -1;                         ///< level of the root; -1 when empty
-  std::vector<std::uint32_t> level_begin;     ///< nodes of level L: [level_begin[L], level_end[L])
+  int top_level = -1;                      ///< level of the root; -1 when empty
+  std::vector<std::uint32_t> level_begin;  ///< nodes of level L: [level_begin[L], level_end[L])
   std::vector<std::uint32_t> level_end;
-  std::vector<Eigen::Vector3i> coord;         ///< node coordinates at its own level
-  std::vector<std::uint32_t> first_child;     ///< first child index (0 for leaves)
-  std::vector<std::uint8_t> child_mask;       ///< bit k set = child slot k present (0 for leaves)
+  std::vector<Eigen::Vector3i> coord;      ///< node coordinates at its own level
+  std::vector<std::uint32_t> first_child;  ///< first child index (0 for leaves)
+  std::vector<std::uint8_t> child_mask;    ///< bit k set = child slot k present (0 for leaves)
 
   bool empty() const { return coord.empty(); }
   std::size_t num_nodes() const { return coord.size(); }

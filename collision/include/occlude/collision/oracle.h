@@ -28,7 +28,7 @@
 namespace occlude::collision {
 
 enum class AccuracyLevel {
-  kVoxel,     ///< one sample per upper voxel, lower distance at the voxel centre: error ~ voxel size
+  kVoxel,  ///< one sample per upper voxel, lower distance at the voxel centre: error ~ voxel size
   kSubVoxel,  ///< every sample, trilinear narrow-band distance: error ~ 0.01 mm at 0.2 mm voxels
   kExact,     ///< every sample, exact closest lower triangle with pseudo-normal sign
 };
@@ -55,7 +55,7 @@ struct ArchFrame {
 ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L);
 
 struct OracleOptions {
-  double voxel_size_mm = 0.2;     ///< voxel size of both trees and the lower's distance field
+  double voxel_size_mm = 0.2;  ///< voxel size of both trees and the lower's distance field
   /// Upper samples about this far apart: triangles longer than it are split
   /// into pieces with edges below it, and the samples of finer triangles are
   /// merged, one per part in each sub-cell of an upper voxel split into k^3
@@ -64,9 +64,9 @@ struct OracleOptions {
   /// than the oracle needs (a-bite-3shape: 0.06 mm^2 per triangle, 663k
   /// unmerged samples at 0.3 mm, 225k merged with 0.2 mm voxels).
   double sample_spacing_mm = 0.3;
-  int sdf_dilation_voxels = 2;    ///< narrow band of the lower's distance field, in voxels
-  int cell_level = 1;             ///< octree level of the upper cells evaluated as a unit
-  int lower_level = 1;            ///< the broad phase descends the lower tree down to this level
+  int sdf_dilation_voxels = 2;  ///< narrow band of the lower's distance field, in voxels
+  int cell_level = 1;           ///< octree level of the upper cells evaluated as a unit
+  int lower_level = 1;          ///< the broad phase descends the lower tree down to this level
   /// Broad phase against the lower's DistanceBound (CellRequest::distance_bound):
   /// the upper tree alone is descended, O(1) per node; false = pair descent.
   bool distance_bound = true;
@@ -88,12 +88,12 @@ struct OracleOptions {
 
 struct OracleRequest {
   AccuracyLevel level = AccuracyLevel::kSubVoxel;
-  double contact_band_mm = 0.1;         ///< contact: 0 <= d <= band
-  double penetration_search_mm = 0.3;   ///< depths are measured up to here (and to the field's band)
-  bool residuals = false;               ///< fill OracleResult::residuals
-  double residual_band_mm = 0.5;        ///< residuals for samples with d <= this
+  double contact_band_mm = 0.1;        ///< contact: 0 <= d <= band
+  double penetration_search_mm = 0.3;  ///< depths are measured up to here (and to the field's band)
+  bool residuals = false;              ///< fill OracleResult::residuals
+  double residual_band_mm = 0.5;       ///< residuals for samples with d <= this
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< rotation pivot of the gradients, mm in L
-  bool keep_points = true;              ///< fill contacts / penetrations point lists
+  bool keep_points = true;                            ///< fill contacts / penetrations point lists
   /// Skip the upper cells and voxels whose samples the field proves to count
   /// for nothing (farther out than the contact band, or the residual band with
   /// residuals); every total, list and residual is the same either way. false:
@@ -105,9 +105,9 @@ struct OracleRequest {
 /// One evaluated upper sample (position in L at the queried pose).
 struct SurfacePoint {
   Eigen::Vector3d p_L = Eigen::Vector3d::Zero();
-  double distance_mm = 0.0;   ///< signed distance to the lower surface
-  double area_mm2 = 0.0;      ///< upper surface area the sample stands for
-  std::int32_t part = 0;      ///< upper part index (tooth) of the sample
+  double distance_mm = 0.0;  ///< signed distance to the lower surface
+  double area_mm2 = 0.0;     ///< upper surface area the sample stands for
+  std::int32_t part = 0;     ///< upper part index (tooth) of the sample
 };
 
 /// Totals per upper part (tooth when the jaw came in parts).
@@ -133,7 +133,7 @@ struct DistanceResidual {
 struct OracleResult {
   AccuracyLevel level = AccuracyLevel::kSubVoxel;  ///< the level actually used
   // Penetration (d < 0).
-  double max_penetration_mm = 0.0;       ///< deepest measured depth (>= 0)
+  double max_penetration_mm = 0.0;  ///< deepest measured depth (>= 0)
   double penetration_area_mm2 = 0.0;
   Eigen::Vector3d deepest_p_L = Eigen::Vector3d::Zero();
   std::size_t deep_samples = 0;  ///< samples inside the lower beyond the measured depth range
@@ -148,10 +148,10 @@ struct OracleResult {
   double min_distance_mm = 0.0;
   double left_share = 0.0, right_share = 0.0;          ///< of contact area
   double anterior_share = 0.0, posterior_share = 0.0;  ///< of contact area
-  std::vector<PartTotals> parts;             ///< one entry per upper part
-  std::vector<SurfacePoint> contacts;        ///< contact samples (if keep_points)
-  std::vector<SurfacePoint> penetrations;    ///< penetrating samples (if keep_points)
-  std::vector<DistanceResidual> residuals;   ///< if requested
+  std::vector<PartTotals> parts;                       ///< one entry per upper part
+  std::vector<SurfacePoint> contacts;                  ///< contact samples (if keep_points)
+  std::vector<SurfacePoint> penetrations;              ///< penetrating samples (if keep_points)
+  std::vector<DistanceResidual> residuals;             ///< if requested
   // Work done.
   std::size_t cells = 0;
   std::size_t samples_evaluated = 0;  ///< samples (voxel centroids at voxel level) looked up
@@ -174,7 +174,8 @@ class JawOracle {
   JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
             std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options = {});
 
-  void Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request, OracleResult* result) const;
+  void Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request,
+             OracleResult* result) const;
 
   const SphereTree& lower_tree() const { return lower_; }
   const SphereTree& upper_tree() const { return upper_; }
@@ -191,7 +192,8 @@ class JawOracle {
   /// upper cell, described by q (oracle_evaluate.cpp).
   void EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* result) const;
   /// The sub-voxel level of EvaluateCell over the cell's voxels [first, last).
-  void EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryContext* q, OracleResult* result) const;
+  void EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryContext* q,
+                        OracleResult* result) const;
   /// Adds one sample at signed distance d (gradient only needed for residuals).
   void Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
                   std::int32_t part, const OracleRequest& request, OracleResult* result) const;
@@ -211,7 +213,8 @@ class JawOracle {
   ArchFrame arch_;
   // Upper samples in U, grouped by upper surface voxel (CSR, voxel order).
   std::vector<Eigen::Vector3f> sample_p_U_;
-  std::vector<Eigen::Vector4f> sample_offset_U_;  ///< p_U minus its cell's centre (cell_center_U_), w = 0
+  std::vector<Eigen::Vector4f>
+      sample_offset_U_;  ///< p_U minus its cell's centre (cell_center_U_), w = 0
   std::vector<float> sample_area_;
   std::vector<std::int32_t> sample_part_;
   std::vector<std::uint32_t> voxel_sample_begin_;  ///< size = upper voxels + 1

@@ -28,7 +28,8 @@ namespace occlude::collision {
 
 class SdfSampler {
  public:
-  explicit SdfSampler(const NarrowBandSdf& sdf) : sdf_(&sdf), inv_s_(static_cast<float>(sdf.inv_s_)) {}
+  explicit SdfSampler(const NarrowBandSdf& sdf)
+      : sdf_(&sdf), inv_s_(static_cast<float>(sdf.inv_s_)) {}
 
   /// Local coordinates are kept at least this far above 0, so that floor is a
   /// plain truncation; offsets added to a GridPoint's local must stay within
@@ -46,7 +47,9 @@ class SdfSampler {
   };
   /// p_F in the field's voxel units. Points beyond the key range (or NaN)
   /// get a base that no lookup finds.
-  GridPoint GridPointOf(const Eigen::Vector3d& p_F) const { return GridPointAt((p_F - sdf_->origin_) * sdf_->inv_s_); }
+  GridPoint GridPointOf(const Eigen::Vector3d& p_F) const {
+    return GridPointAt((p_F - sdf_->origin_) * sdf_->inv_s_);
+  }
   /// The same for q = (p_F - origin()) / voxel size, the field's voxel coordinates.
   GridPoint GridPointAt(const Eigen::Vector3d& q) const {
     // Below kBias + 1 in float: q just below the next voxel stays in this one.
@@ -81,9 +84,11 @@ class SdfSampler {
     const __m128 p = _mm_load_ps(local.data());
     const __m128i floor = _mm_cvttps_epi32(p);  // truncation: local > 0
     _mm_store_ps(f->data(), _mm_sub_ps(p, _mm_cvtepi32_ps(floor)));
-    const __m128i key = _mm_add_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(base.data())), floor);
+    const __m128i key =
+        _mm_add_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(base.data())), floor);
     const __m128i last = _mm_load_si128(reinterpret_cast<const __m128i*>(voxel_key_.data()));
-    if (_mm_movemask_epi8(_mm_cmpeq_epi32(key, last)) == 0xffff) return voxel_;  // the previous point's voxel
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(key, last)) == 0xffff)
+      return voxel_;  // the previous point's voxel
     _mm_store_si128(reinterpret_cast<__m128i*>(voxel_key_.data()), key);
     const Eigen::Array4i& voxel = voxel_key_;
 #else
@@ -180,8 +185,8 @@ class SdfSampler {
     std::array<std::uint8_t, 64> t{};
     for (int l = 0; l < 64; ++l) {
       const int x = l & 3, y = (l >> 2) & 3, z = l >> 4;
-      t[static_cast<std::size_t>(l)] = static_cast<std::uint8_t>((x & 1) | (y & 1) << 1 | (z & 1) << 2 |
-                                                                 (x >> 1) << 3 | (y >> 1) << 4 | (z >> 1) << 5);
+      t[static_cast<std::size_t>(l)] = static_cast<std::uint8_t>(
+          (x & 1) | (y & 1) << 1 | (z & 1) << 2 | (x >> 1) << 3 | (y >> 1) << 4 | (z >> 1) << 5);
     }
     return t;
   }();

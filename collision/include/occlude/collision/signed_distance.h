@@ -129,7 +129,8 @@ class BrickSet {
     if (dense_.empty()) {
       constexpr std::uint32_t kLimit = 1u << 19;  // brick coordinates of 21-bit voxel keys
       if (x >= kLimit || y >= kLimit || z >= kLimit) return KeyIndexHash::kNotFound;
-      return index_.Find(MortonEncode(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)));
+      return index_.Find(
+          MortonEncode(static_cast<int>(x), static_cast<int>(y), static_cast<int>(z)));
     }
     const std::uint32_t* slot = DenseSlot(x, y, z);
     return slot == nullptr ? KeyIndexHash::kNotFound : *slot;
@@ -158,7 +159,8 @@ class BrickSet {
   const std::vector<Brick>& bricks() const { return bricks_; }
   std::size_t num_voxels() const { return voxels_; }
   std::size_t MemoryBytes() const {
-    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes() + dense_.capacity() * sizeof(std::uint32_t);
+    return bricks_.capacity() * sizeof(Brick) + index_.MemoryBytes() +
+           dense_.capacity() * sizeof(std::uint32_t);
   }
   static std::uint32_t PopCount(std::uint64_t x) {
     x -= (x >> 1) & 0x5555555555555555ULL;
@@ -176,7 +178,8 @@ class BrickSet {
     y -= dense_lo_[1];
     z -= dense_lo_[2];
     if (x >= dense_dims_[0] || y >= dense_dims_[1] || z >= dense_dims_[2]) return nullptr;
-    return &dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) + dense_dims_[1] * static_cast<std::size_t>(z))];
+    return &dense_[x + dense_dims_[0] * (static_cast<std::size_t>(y) +
+                                         dense_dims_[1] * static_cast<std::size_t>(z))];
   }
   std::vector<Brick> bricks_;
   KeyIndexHash index_;
@@ -282,8 +285,8 @@ class NarrowBandSdf {
   /// (into value[rank]), from one candidate list of triangles for the brick.
   void BrickCornerValues(const detail::BrickSet& corners, std::size_t bi, CornerScratch* scratch,
                          std::vector<float>* value) const;
-  void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p, Nearest* best,
-                      bool* found) const;
+  void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p,
+                      Nearest* best, bool* found) const;
   void FillBlocks(const detail::BrickSet& band);
   /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
   /// index or kNoHint) seeds the search. False when none is within.
@@ -314,7 +317,7 @@ class NarrowBandSdf {
   int shift_ = 0;  ///< band voxel (i,j,k) is keyed by Morton(i+shift, j+shift, k+shift)
   std::vector<std::uint32_t> tri_offsets_;  ///< CSR, as in VoxelGrid
   std::vector<std::uint32_t> tri_indices_;
-  detail::BrickSet surface_;                  ///< grid keys; rank = index into the CSR
+  detail::BrickSet surface_;  ///< grid keys; rank = index into the CSR
   /// The corner values of one 4x4x4 brick of band voxels: its 5x5x5 corners
   /// (x + 5 y + 25 z), mm, stored together so that one hash probe and one or
   /// two cache lines serve a query (a block per voxel measured 150-290 ns per
@@ -324,7 +327,7 @@ class NarrowBandSdf {
     std::uint64_t mask = 0;  ///< band voxels of the brick (BrickSet mask)
     float value[125];
   };
-  detail::BrickSet band_;                  ///< shifted keys; brick i <-> corner_bricks_[i]
+  detail::BrickSet band_;  ///< shifted keys; brick i <-> corner_bricks_[i]
   std::vector<CornerBrick> corner_bricks_;
   /// The corner brick at brick coordinates (bx, by, bz) (of shifted voxel
   /// coordinates >> 2, each < 2^19), or null.

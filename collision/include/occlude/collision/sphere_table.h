@@ -35,8 +35,7 @@ inline double ChildCenterOffset(double voxel_size_mm, int parent_level) {
 
 /// +1 or -1 per axis for child slot 0..7 (bit 0 = x, bit 1 = y, bit 2 = z).
 inline Eigen::Vector3d ChildSlotSign(int slot) {
-  return Eigen::Vector3d((slot & 1) ? 1.0 : -1.0, (slot & 2) ? 1.0 : -1.0,
-                         (slot & 4) ? 1.0 : -1.0);
+  return Eigen::Vector3d((slot & 1) ? 1.0 : -1.0, (slot & 2) ? 1.0 : -1.0, (slot & 4) ? 1.0 : -1.0);
 }
 
 struct UnitSphere {

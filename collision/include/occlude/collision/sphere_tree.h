@@ -26,8 +26,8 @@ enum class SphereMode {
 const char* ToString(SphereMode mode);
 
 struct SphereTreeOptions {
-  VoxelizeOptions voxelize;                        ///< voxel size and classification
-  bool build_explicit = true;                      ///< precompute the saved IST
+  VoxelizeOptions voxelize;                           ///< voxel size and classification
+  bool build_explicit = true;                         ///< precompute the saved IST
   SphereMode explicit_from = SphereMode::kOptimized;  ///< kSimple or kOptimized
   /// Build the DistanceBound of the surface voxels (lets queries prune a node
   /// of the other tree that is far from this whole tree in O(1)).

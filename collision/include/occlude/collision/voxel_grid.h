@@ -38,14 +38,20 @@ namespace occlude::collision {
 /// coordinates up to about 10^6 voxel sizes from the frame's origin.
 inline constexpr double kSurfaceSlack = 1e-9;
 
-enum class VoxelClass : std::uint8_t { kUndefined = 0, kSurface = 1, kProximity = 2, kInterior = 3 };
+enum class VoxelClass : std::uint8_t {
+  kUndefined = 0,
+  kSurface = 1,
+  kProximity = 2,
+  kInterior = 3
+};
 
 struct VoxelizeOptions {
-  double voxel_size_mm = 0.2;         ///< edge s of a voxel, mm; > 0
-  bool classify_proximity = true;     ///< compute Proximity voxels
-  int proximity_layers = 2;           ///< outward reach of Proximity, in voxels (paper: ~2s)
-  bool classify_interior = true;      ///< compute Interior runs for closed components
-  std::size_t memory_budget_bytes = 0;  ///< 0 = unchecked; else VoxelizeError if the estimate exceeds it
+  double voxel_size_mm = 0.2;      ///< edge s of a voxel, mm; > 0
+  bool classify_proximity = true;  ///< compute Proximity voxels
+  int proximity_layers = 2;        ///< outward reach of Proximity, in voxels (paper: ~2s)
+  bool classify_interior = true;   ///< compute Interior runs for closed components
+  std::size_t memory_budget_bytes =
+      0;  ///< 0 = unchecked; else VoxelizeError if the estimate exceeds it
 };
 
 /// A run of Interior voxels along x: voxels (x, y, z) for x in [x_begin, x_end).
@@ -60,11 +66,11 @@ struct VoxelRun {
 struct VoxelizeStats {
   std::size_t surface_voxels = 0;
   std::size_t proximity_voxels = 0;
-  std::size_t interior_voxels = 0;      ///< sum of run lengths
+  std::size_t interior_voxels = 0;       ///< sum of run lengths
   std::size_t triangle_voxel_tests = 0;  ///< exact triangle-cube tests performed
   std::size_t closed_components = 0;
   std::size_t open_components = 0;
-  std::size_t interior_odd_rows = 0;     ///< (row, component) pairs skipped: odd crossings
+  std::size_t interior_odd_rows = 0;  ///< (row, component) pairs skipped: odd crossings
   double seconds_surface = 0.0;
   double seconds_proximity = 0.0;
   double seconds_interior = 0.0;
@@ -73,13 +79,13 @@ struct VoxelizeStats {
 struct VoxelGrid {
   double voxel_size_mm = 0.0;
   Eigen::Vector3d origin_F = Eigen::Vector3d::Zero();  ///< min corner of voxel (0,0,0), mm
-  Eigen::Vector3i dims = Eigen::Vector3i::Zero();       ///< voxels per axis (all coords < dims)
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();      ///< voxels per axis (all coords < dims)
 
   std::vector<std::uint64_t> surface_keys;      ///< Morton codes, strictly increasing
   std::vector<std::uint32_t> triangle_offsets;  ///< CSR: size surface_keys.size() + 1
   std::vector<std::uint32_t> triangle_indices;  ///< triangles touching each surface voxel
   std::vector<std::uint64_t> proximity_keys;    ///< strictly increasing, disjoint from the others
-  std::vector<VoxelRun> interior_runs;          ///< sorted by (z, y, x_begin); disjoint from surface
+  std::vector<VoxelRun> interior_runs;  ///< sorted by (z, y, x_begin); disjoint from surface
 
   std::size_t num_surface() const { return surface_keys.size(); }
   /// Triangles of surface voxel v (index into surface_keys): [begin, end) into triangle_indices.

@@ -20,22 +20,23 @@ struct OutlierPoint {
   Eigen::Vector3d p_L = Eigen::Vector3d::Zero();  ///< position in L at the evaluated pose
   double depth_mm = 0.0;                          ///< > 0
   double area_mm2 = 0.0;
-  std::int32_t part = 0;                          ///< upper part (tooth) index
-  bool spike = false;  ///< in a spike patch (else: within the deepest-area budget)
+  std::int32_t part = 0;  ///< upper part (tooth) index
+  bool spike = false;     ///< in a spike patch (else: within the deepest-area budget)
 };
 
 struct PoseEvaluation {
-  double contact_area_mm2 = 0.0;         ///< 0 <= d <= contact band
+  double contact_area_mm2 = 0.0;  ///< 0 <= d <= contact band
   std::size_t contact_samples = 0;
-  double max_penetration_mm = 0.0;       ///< true deepest measured depth (>= 0)
-  double constrained_penetration_mm = 0.0;  ///< the measure the constraint compares (see PenetrationMeasure)
+  double max_penetration_mm = 0.0;  ///< true deepest measured depth (>= 0)
+  double constrained_penetration_mm =
+      0.0;  ///< the measure the constraint compares (see PenetrationMeasure)
   double penetration_area_mm2 = 0.0;
-  std::size_t deep_samples = 0;          ///< inside the lower beyond the measured range
-  std::vector<OutlierPoint> outliers;    ///< penetrating samples left out of the measure
+  std::size_t deep_samples = 0;        ///< inside the lower beyond the measured range
+  std::vector<OutlierPoint> outliers;  ///< penetrating samples left out of the measure
   double left_share = 0.0, right_share = 0.0, anterior_share = 0.0, posterior_share = 0.0;
   double posterior_left_mm2 = 0.0, posterior_right_mm2 = 0.0;
   std::vector<collision::PartTotals> parts;  ///< per upper part (tooth)
-  double score = 0.0;   ///< contact area minus the bilateral penalty (mm^2); higher is better
+  double score = 0.0;     ///< contact area minus the bilateral penalty (mm^2); higher is better
   bool feasible = false;  ///< constrained_penetration_mm <= max_penetration_mm and no deep samples
 };
 
@@ -55,7 +56,7 @@ struct PenetrationPatch {
   std::vector<std::size_t> members;  ///< indices into the samples
   double depth_mm = 0.0;             ///< deepest member
   double area_mm2 = 0.0;
-  Eigen::Vector3d centre_L = Eigen::Vector3d::Zero();   ///< area-weighted
+  Eigen::Vector3d centre_L = Eigen::Vector3d::Zero();  ///< area-weighted
   Eigen::Vector3d deepest_L = Eigen::Vector3d::Zero();
   /// A scanner spike: deeper than the radius of a disc of its area (steeper than a hemisphere
   /// pressed in: a crown would have to sink deeper than its own radius of curvature) and at most
@@ -64,8 +65,8 @@ struct PenetrationPatch {
 };
 /// Groups penetrating samples into patches (grid hash, O(n)); patches in the order of their
 /// first member. `max_spike_area_mm2` caps the area of a patch that may be a spike (0: none).
-std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSample>& samples, double link_mm,
-                                                 double max_spike_area_mm2);
+std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSample>& samples,
+                                                 double link_mm, double max_spike_area_mm2);
 /// Per sample: member of a spike patch.
 std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, double link_mm,
                                double max_spike_area_mm2);
@@ -75,8 +76,9 @@ std::vector<bool> SpikeMembers(const std::vector<PenetratingSample>& samples, do
 /// samples deeper than `limit_mm` cover more than kNestedCaps size caps (deeply nested jaws:
 /// infeasible whatever the spikes, and thousands of samples to link).
 inline constexpr double kNestedCaps = 4.0;
-std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples, double link_mm,
-                                         double max_spike_area_mm2, double limit_mm, double shallow_mm);
+std::vector<bool> SpikeMembersForMeasure(const std::vector<PenetratingSample>& samples,
+                                         double link_mm, double max_spike_area_mm2, double limit_mm,
+                                         double shallow_mm);
 /// The spike-patch size cap the request asks for (0 when outliers are off: kMax).
 double SpikePatchCap(const PlanRequest& request);
 /// The `shallow_mm` the planner links above: half the smaller of the limit and the seat
@@ -116,18 +118,19 @@ PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d&
 
 /// A pose on the straight path between two poses, evaluated.
 struct PathPoint {
-  double s = 0.0;                 ///< 0 at the path's start, 1 at its end
+  double s = 0.0;  ///< 0 at the path's start, 1 at its end
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
-  PoseError from_start;           ///< displacement from the start pose (ComparePoses' points)
+  PoseError from_start;  ///< displacement from the start pose (ComparePoses' points)
   PoseEvaluation evaluation;
 };
 /// `steps + 1` poses at s = k / steps between X_LU_from (s = 0) and X_LU_to (s = 1): the pivot
 /// parameters of X_LU_to relative to X_LU_from (about p_LPivot) scaled by s, each evaluated
 /// on `stage` under the request. Throws std::invalid_argument when steps < 1.
 std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isometry3d& X_LU_from,
-                                    const Eigen::Isometry3d& X_LU_to, const Eigen::Vector3d& p_LPivot,
-                                    const std::vector<Eigen::Vector3d>& points_U, const PlanRequest& request,
-                                    int steps);
+                                    const Eigen::Isometry3d& X_LU_to,
+                                    const Eigen::Vector3d& p_LPivot,
+                                    const std::vector<Eigen::Vector3d>& points_U,
+                                    const PlanRequest& request, int steps);
 /// Does `a` Pareto-dominate `b` for "maximal contact, no interpenetration": strictly more
 /// contact area, no deeper outlier-robust penetration and no more deep samples. A pose that
 /// another dominates is the optimum of no objective that rewards contact and penalizes

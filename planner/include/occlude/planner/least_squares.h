@@ -7,7 +7,8 @@
 // the opposing occlusal surfaces under the no-collision constraint). Per sample i (area a_i,
 // signed distance d_i at the pose):
 //   hinge      r = w_pen * sqrt(a_i) * min(0, d_i + allowance)   (Huber loss of scale
-//                                                    w_pen sqrt(a_i) huber_mm: spikes push linearly)
+//                                                    w_pen sqrt(a_i) huber_mm: spikes push
+//                                                    linearly)
 //   attraction r = sqrt(a_i) * clamp(d_i, 0, window)  (Cauchy loss of scale
 //                                                    attraction_scale_mm sqrt(a_i))
 // Losses are applied by the solver, not here; SeatCost() gives the same total cost.
@@ -26,16 +27,16 @@
 namespace occlude::planner {
 
 struct ResidualSettings {
-  double contact_band_mm = 0.1;      ///< (reported contact only; not part of the residuals)
-  double penetration_weight = 20.0;  ///< w_pen
+  double contact_band_mm = 0.1;            ///< (reported contact only; not part of the residuals)
+  double penetration_weight = 20.0;        ///< w_pen
   double penetration_allowance_mm = 0.02;  ///< hinge starts beyond this depth
-  double penetration_huber_mm = 0.1;  ///< Huber scale of the hinge, as a depth (solver side)
-  double attraction_scale_mm = 0.3;  ///< Cauchy scale of the attraction (solver side)
-  double window_mm = 1.0;            ///< gaps above this no longer attract (constant residual)
+  double penetration_huber_mm = 0.1;       ///< Huber scale of the hinge, as a depth (solver side)
+  double attraction_scale_mm = 0.3;        ///< Cauchy scale of the attraction (solver side)
+  double window_mm = 1.0;  ///< gaps above this no longer attract (constant residual)
   /// Only samples whose normal is within acos(this) of the direction towards the lower attract
   /// (occlusal surfaces; not the steep incisor and crown sides, whose overjet gap is designed).
   double attraction_min_facing = 0.6;
-  double range_mm = 1.0;             ///< samples with d <= range at the base pose take part
+  double range_mm = 1.0;  ///< samples with d <= range at the base pose take part
   /// Solver side: a near-constant force closing the jaws along the occlusal axis, as a share
   /// of the residual samples' total area (0 = off; 0.1-0.5 made results worse, see report).
   double closure_weight = 0.0;

@@ -32,27 +32,28 @@ const char* ToString(SolveStatus status);
 
 struct Proposal {
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
-  PoseParameters params;   ///< relative to the request's start pose, about the pivot
+  PoseParameters params;      ///< relative to the request's start pose, about the pivot
   PoseEvaluation evaluation;  ///< on the last stage of the schedule
-  double score = 0.0;      ///< evaluation.score
+  double score = 0.0;         ///< evaluation.score
   /// The seat objective (robust sum of the occlusal gaps plus the penetration penalty) on the
   /// last stage's occlusal samples at X_LU: the ranking of the proposals (lower is better).
   double seat_cost = 0.0;
   SolveStatus status = SolveStatus::kFailed;
-  std::string message;     ///< solver detail (NLopt/Ceres termination)
-  int start_index = 0;     ///< which start produced it (0 = the start pose)
-  int evaluations = 0;     ///< objective/residual evaluations of this start
+  std::string message;       ///< solver detail (NLopt/Ceres termination)
+  int start_index = 0;       ///< which start produced it (0 = the start pose)
+  int evaluations = 0;       ///< objective/residual evaluations of this start
   double cpu_seconds = 0.0;  ///< thread CPU time of this start
 };
 
 struct PlanResult {
-  std::vector<Proposal> proposals;  ///< at most max_proposals, distinct, feasible first, then lowest seat_cost
+  std::vector<Proposal>
+      proposals;  ///< at most max_proposals, distinct, feasible first, then lowest seat_cost
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot used (L, at the start pose)
   SolverKind solver = SolverKind::kCoarseToFine;
   int starts_run = 0;      ///< local solves run (fewer than planned when max_seconds ran out)
   int starts_skipped = 0;  ///< local solves skipped by max_seconds
   int total_evaluations = 0;
-  double cpu_seconds = 0.0;   ///< sum of thread CPU time of all starts and the global stage
+  double cpu_seconds = 0.0;  ///< sum of thread CPU time of all starts and the global stage
   double wall_seconds = 0.0;
 };
 

@@ -20,10 +20,12 @@ namespace occlude::planner {
 
 /// The search methods; every one is a complete solver (see plan.h).
 enum class SolverKind {
-  kNloptLocal,    ///< "nlopt-local": constrained local search from each start (NlopLocalMethod)
-  kNloptGlobal,   ///< "nlopt-global": seeded sampling of the bounds; the best seeds through NLopt on each stage (coarse: all, finer: the best)
-  kCeres,         ///< "ceres": least squares on signed-distance residuals from each start
-  kCoarseToFine,  ///< "coarse-to-fine": sampling + Ceres on each stage (coarse: all seeds, finer: the best)
+  kNloptLocal,   ///< "nlopt-local": constrained local search from each start (NlopLocalMethod)
+  kNloptGlobal,  ///< "nlopt-global": seeded sampling of the bounds; the best seeds through NLopt on
+                 ///< each stage (coarse: all, finer: the best)
+  kCeres,        ///< "ceres": least squares on signed-distance residuals from each start
+  kCoarseToFine,  ///< "coarse-to-fine": sampling + Ceres on each stage (coarse: all seeds, finer:
+                  ///< the best)
 };
 const char* ToString(SolverKind kind);
 /// Parses a solver name as printed by ToString; throws std::invalid_argument naming "solver"
@@ -39,9 +41,9 @@ NloptLocalMethod NloptLocalMethodFromName(const std::string& name);
 
 /// How the penetration constraint treats the deepest samples (scanner spikes).
 enum class PenetrationMeasure {
-  kMax,           ///< the deepest sample: no outliers
-  kOutlierArea,   ///< the depth left after discarding the deepest samples up to outlier_area_mm2
-  kPercentile,    ///< the same with a budget of (100 - percentile) % of the near-contact area
+  kMax,          ///< the deepest sample: no outliers
+  kOutlierArea,  ///< the depth left after discarding the deepest samples up to outlier_area_mm2
+  kPercentile,   ///< the same with a budget of (100 - percentile) % of the near-contact area
 };
 const char* ToString(PenetrationMeasure measure);
 
@@ -56,10 +58,10 @@ struct PlanRequest {
   /// runs within 0.3 mm, COBYLA 0 of 6, AUGLAG-Sbplx 1 of 6.
   NloptLocalMethod nlopt_local = NloptLocalMethod::kAuglagBobyqa;
 
-  double contact_band_mm = 0.1;       ///< contact: 0 <= d <= band
-  double max_penetration_mm = 0.05;   ///< constraint on the penetration measure
+  double contact_band_mm = 0.1;      ///< contact: 0 <= d <= band
+  double max_penetration_mm = 0.05;  ///< constraint on the penetration measure
   PenetrationMeasure penetration_measure = PenetrationMeasure::kOutlierArea;
-  double outlier_area_mm2 = 0.05;     ///< kOutlierArea: deepest area that may exceed the limit
+  double outlier_area_mm2 = 0.05;        ///< kOutlierArea: deepest area that may exceed the limit
   double penetration_percentile = 99.0;  ///< kPercentile, in (0, 100]
   /// kOutlierArea / kPercentile: penetration patches steeper than a hemisphere (deeper than the
   /// radius of a disc of their area: scan spikes, folds, flaps) up to this area are outliers
@@ -92,13 +94,14 @@ struct PlanRequest {
   std::optional<Eigen::Vector3d> pivot_L;
 
   std::uint32_t seed = 1;
-  int num_starts = 4;           ///< local solves (the start pose and sampled starts)
-  int num_global_samples = 48;  ///< global stage: poses sampled in the bounds (nlopt-global, coarse-to-fine)
-  int num_threads = 2;          ///< threads for the starts (std::thread); 1 = serial
-  int max_proposals = 3;        ///< K distinct occlusions returned (best first)
+  int num_starts = 4;  ///< local solves (the start pose and sampled starts)
+  int num_global_samples =
+      48;  ///< global stage: poses sampled in the bounds (nlopt-global, coarse-to-fine)
+  int num_threads = 2;                   ///< threads for the starts (std::thread); 1 = serial
+  int max_proposals = 3;                 ///< K distinct occlusions returned (best first)
   double distinct_translation_mm = 0.5;  ///< proposals differ by more than this at a reference
   double distinct_rotation_deg = 2.0;    ///< point, or by more than this rotation
-  int max_evaluations = 600;    ///< oracle queries per local solve (per stage)
+  int max_evaluations = 600;             ///< oracle queries per local solve (per stage)
   /// Wall-clock budget (s) of the local solves: starts not begun by then are skipped (the
   /// result says how many ran); 0 = no budget.
   double max_seconds = 0.0;
@@ -133,7 +136,8 @@ inline constexpr double kCoarseBandMm = 3.0;
 /// The oracle options of stage `index` of a schedule with these voxel sizes (what
 /// BuildSchedule uses; for callers that build the oracles themselves).
 collision::OracleOptions StageOracleOptions(const collision::OracleOptions& base,
-                                            const std::vector<double>& voxel_sizes_mm, std::size_t index);
+                                            const std::vector<double>& voxel_sizes_mm,
+                                            std::size_t index);
 OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
                             std::shared_ptr<const io::TriangleMesh> upper_U,
                             const std::vector<double>& voxel_sizes_mm, bool exact_last,
