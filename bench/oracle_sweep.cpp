@@ -61,8 +61,7 @@ double MedianMicros(F&& f, int reps) {
 
 std::filesystem::path DataDir() {
   if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "shared" /
-         "data";
+  return OCCLUDE_DEFAULT_DATA_DIR;
 }
 
 struct Args {

@@ -27,8 +27,7 @@ using V = Eigen::Vector3d;
 
 std::filesystem::path DataDir() {
   if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "shared" /
-         "data";
+  return OCCLUDE_DEFAULT_DATA_DIR;
 }
 
 /// The lower jaw, loaded once (null when absent).

@@ -26,8 +26,7 @@ using occlude::collision::VoxelizeStats;
 std::filesystem::path DataDir() {
   if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
   // bench/ -> repository -> its parent, where shared/ lives.
-  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "shared" /
-         "data";
+  return OCCLUDE_DEFAULT_DATA_DIR;
 }
 
 /// The real loader; an empty mesh when the file cannot be read.

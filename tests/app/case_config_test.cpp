@@ -18,8 +18,7 @@ namespace {
 using app::CaseConfig;
 
 std::filesystem::path ExamplesDir() {
-  return std::filesystem::weakly_canonical(std::filesystem::path(__FILE__).parent_path() / ".." /
-                                           ".." / "examples");
+  return std::filesystem::path(OCCLUDE_SOURCE_DIR) / "examples";
 }
 
 // A temporary folder with meshes/lower.stl, meshes/upper.stl and meshes/Tooth_14.stl.
