@@ -6,7 +6,7 @@
 // and interpolation not at all, coarser voxels have larger errors, the voxel-pair
 // query misses no contact near the surface (it is conservative) and the exact
 // pair query invents none, and the three sphere modes answer alike.
-#include "bench_accuracy.h"
+#include "bench/bench_accuracy.h"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "bench/fcl_peer.h"
 #include "bench_files.h"
-#include "fcl_peer.h"
 #include "run_occlude.h"
 #include "test_common.h"
 

@@ -3,15 +3,14 @@
 // and outside, within and beyond the search radius), and the fixed upper
 // samples lie on their triangles, cover them to the spacing and hold every
 // vertex once.
-#include "bench_accuracy_truth.h"
-
 #include <gtest/gtest.h>
 
 #include <array>
 #include <random>
 #include <set>
 
-#include "bench_accuracy_score.h"
+#include "bench/bench_accuracy_score_internal.h"
+#include "bench/bench_accuracy_truth_internal.h"
 #include "bench_files.h"
 #include "occlude/collision/signed_distance.h"
 #include "test_common.h"

@@ -5,7 +5,7 @@
 // query-rate sweep (Fig. 10, on the small sphere-on-box case) with every sphere
 // mode, PNG charts; --mesh and --no-sweep have no Fig. 10; the fits are exact
 // on exact data.
-#include "bench_paper.h"
+#include "bench/bench_paper.h"
 
 #include <gtest/gtest.h>
 

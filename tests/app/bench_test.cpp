@@ -2,7 +2,7 @@
 // variant, voxel size, query kind and offset; the charts are PNG files; the
 // poses are seeded, jittered within bounds and identical for every method; the
 // haptic loop reports every tick; bad inputs write nothing.
-#include "bench.h"
+#include "bench/bench.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <set>
 #include <sstream>
 
-#include "bench_poses.h"
-#include "chart.h"
-#include "fcl_peer.h"
+#include "bench/bench_poses_internal.h"
+#include "bench/fcl_peer.h"
+#include "chart/chart.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "run_occlude.h"
 #include "test_common.h"

@@ -2,15 +2,15 @@
 // against the file's folder, the example configs valid, and every kind of bad
 // input rejected with one line naming the file, the key (with its table path)
 // and the fix, unknown keys with the closest valid key.
-#include "case_config.h"
+#include "config/case_config.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
+#include "base/user_error.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
-#include "user_error.h"
 
 namespace occlude::test {
 namespace {

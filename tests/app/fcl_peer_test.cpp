@@ -2,7 +2,7 @@
 // pose handling (moving the upper jaw by X_LU equals moving its mesh), both BV types, and the
 // real registered bite when the shared data folder is present. Every test skips when occlude
 // was built without FCL.
-#include "fcl_peer.h"
+#include "bench/fcl_peer.h"
 
 #include <gtest/gtest.h>
 

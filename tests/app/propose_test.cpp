@@ -11,7 +11,7 @@
 #include <sstream>
 #include <thread>
 
-#include "pose_file.h"
+#include "config/pose_file.h"
 #include "run_occlude.h"
 #include "test_common.h"
 

@@ -13,12 +13,12 @@
 #include <memory>
 #include <sstream>
 
-#include "case_config.h"
+#include "config/case_config.h"
+#include "config/pose_file.h"
 #include "occlude/io/synthetic_jaws.h"
-#include "pose_file.h"
-#include "report_analysis.h"
-#include "report_document.h"
-#include "report_images.h"
+#include "report/report_analysis.h"
+#include "report/report_document.h"
+#include "report/report_images.h"
 #include "test_common.h"
 
 namespace occlude::test {

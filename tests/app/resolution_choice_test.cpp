@@ -3,17 +3,17 @@
 // the band) against a brute-force pick over random tables; the built-in table parses and
 // is the measured one; unmet accuracies fall back to the most accurate setting, flagged;
 // the case config picks through it, takes its own table, and reports bad tables by key.
-#include "resolution_choice.h"
+#include "config/resolution_choice.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <random>
 
-#include "case_config.h"
+#include "base/user_error.h"
+#include "config/case_config.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
-#include "user_error.h"
 
 namespace occlude::test {
 namespace {

@@ -2,7 +2,7 @@
 // solver, magnitude and start with the documented columns, the closing rows start at the
 // reference, easy perturbations return within the success bar, the consensus statistics,
 // the charts; and the command itself (files written, bad options rejected with one line).
-#include "validate.h"
+#include "validate/validate.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/user_error.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "run_occlude.h"
 #include "test_common.h"
-#include "user_error.h"
 
 namespace occlude::app {
 namespace {

@@ -1,4 +1,4 @@
-// libFuzzer target: the case config parser (app/src/case_config*.cpp). The
+// libFuzzer target: the case config parser (app/config/case_config*.cpp). The
 // config names a file in a folder that holds lower.stl and upper.stl (empty:
 // the parser only checks that mesh files exist), so inputs can get past the
 // mesh keys. Contract: a UserError is the only way to fail, and an accepted
@@ -11,9 +11,9 @@
 #include <fstream>
 #include <string>
 
-#include "case_config.h"
-#include "commands.h"
-#include "pose_file.h"
+#include "base/user_error.h"
+#include "config/case_config.h"
+#include "config/pose_file.h"
 
 namespace {
 

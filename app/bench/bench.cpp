@@ -1,0 +1,464 @@
+// The occlusal-axis benchmark of `occlude bench` (see bench.h).
+#include "bench/bench.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <ostream>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "base/text_format.h"
+#include "base/user_error.h"
+#include "bench/bench_poses_internal.h"
+#include "bench/fcl_peer.h"
+#include "chart/chart.h"
+#include "occlude/collision/collide.h"
+#include "occlude/collision/oracle.h"
+
+namespace occlude::app {
+namespace {
+
+using collision::SphereMode;
+
+void Log(const BenchOptions& options, const std::string& line) {
+  if (options.log) *options.log << "bench: " << line << std::endl;
+}
+
+constexpr std::size_t kWarmUpQueries = 3;
+
+// Times `query(pose)` once per pose (thread CPU, microseconds); `record` sees
+// the result of the first pose.
+template <class Query>
+Summary TimePoses(const std::vector<Eigen::Isometry3d>& poses, std::size_t count, Query&& query) {
+  std::vector<double> us;
+  count = std::min(count, poses.size());
+  // Warm-up: the first queries after another kind of query (a 35 ms pair query
+  // sweeps the caches) run several times slower; a few untimed ones first.
+  for (std::size_t i = 0; i < std::min(kWarmUpQueries, count); ++i) query(poses[i]);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t0 = ThreadCpuSeconds();
+    query(poses[i]);
+    us.push_back(1e6 * (ThreadCpuSeconds() - t0));
+  }
+  return Summarize(&us);
+}
+
+BenchRow MakeRow(const std::string& method, const std::string& variant,
+                 const std::string& structure) {
+  BenchRow row;
+  row.method = method;
+  row.variant = variant;
+  row.structure = structure;
+  return row;
+}
+
+}  // namespace
+
+collision::OracleOptions OracleOptionsFor(double voxel_mm) {
+  collision::OracleOptions options;
+  options.voxel_size_mm = voxel_mm;
+  // Samples no sparser than the default spacing, and no denser than needed to
+  // give every voxel a few samples.
+  options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
+  return options;
+}
+
+namespace {
+
+std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& options) {
+  std::vector<BenchRow> rows;
+  const std::vector<std::vector<Eigen::Isometry3d>> poses = SweepPoses(
+      bc, options.offsets_mm, options.reps, options.jitter_deg, options.jitter_mm, options.seed);
+  const auto slow_reps = static_cast<std::size_t>(std::max(3, options.reps / 3));
+  const auto slowest_reps = static_cast<std::size_t>(std::max(2, options.reps / 5));
+
+  // FCL first: its rows are the reference of the IST speedups.
+  std::map<std::pair<std::string, double>, double> fcl_median;  // ("obb:boolean", offset) -> us
+  if (options.fcl && FclPeer::Available()) {
+    for (const FclBv bv : {FclBv::kOBB, FclBv::kOBBRSS}) {
+      const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
+      Log(options, "FCL " + variant + ": building");
+      const FclPeer peer(*bc.lower_L, *bc.upper_U, bv);
+      BenchRow build = MakeRow("fcl", variant, "trees");
+      build.query = "build";
+      build.reps = 1;
+      build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
+      build.bytes = peer.approx_bytes();
+      rows.push_back(build);
+      for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
+        const auto& at = poses[k];
+        const double offset = options.offsets_mm[k];
+        auto add = [&](const std::string& query, std::size_t reps, auto&& fn) {
+          BenchRow row = MakeRow("fcl", variant, "");
+          row.query = query;
+          row.offset_mm = offset;
+          row.reps = static_cast<int>(std::min(reps, at.size()));
+          fn(&row);
+          fcl_median[{variant + ":" + query, offset}] = row.us.median;
+          rows.push_back(row);
+        };
+        add("boolean", at.size(), [&](BenchRow* row) {
+          bool hit = false;
+          row->us =
+              TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) { hit = peer.Collide(X); });
+          row->pairs = peer.Collide(at[0]) ? 1 : 0;
+          (void)hit;
+        });
+        add("collide-all", slow_reps, [&](BenchRow* row) {
+          row->us = TimePoses(at, slow_reps,
+                              [&](const Eigen::Isometry3d& X) { (void)peer.CollideAll(X); });
+          row->pairs = peer.CollideAll(at[0]);
+        });
+        if (bv == FclBv::kOBBRSS) {
+          add("distance", slow_reps, [&](BenchRow* row) {
+            row->us = TimePoses(at, slow_reps,
+                                [&](const Eigen::Isometry3d& X) { (void)peer.Distance(X); });
+            row->min_distance_mm = peer.Distance(at[0]).distance_mm;
+          });
+        }
+      }
+      Log(options, "FCL " + variant + ": done");
+    }
+  }
+  auto speedup = [&](BenchRow* row, const std::string& reference) {
+    const auto it = fcl_median.find({reference, row->offset_mm});
+    if (it == fcl_median.end()) return;
+    row->fcl_reference = reference;
+    if (row->us.median > 0) row->speedup = it->second / row->us.median;
+  };
+
+  for (const double voxel : options.voxels_mm) {
+    Log(options, "IST " + Fixed(voxel, 2) + " mm: building the trees and the oracle");
+    const double t0 = NowSeconds();
+    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, OracleOptionsFor(voxel));
+    const double oracle_seconds = NowSeconds() - t0;
+    const collision::SphereTree& lower = oracle.lower_tree();
+    const collision::SphereTree& upper = oracle.upper_tree();
+    {
+      // Simple and optimized spheres need only the voxels and the octree; the
+      // explicit (saved) tree adds its precomputed spheres and slabs.
+      const auto& ls = lower.stats();
+      const auto& us = upper.stats();
+      const double implicit_s =
+          ls.seconds_voxelize + ls.seconds_octree + us.seconds_voxelize + us.seconds_octree;
+      const std::size_t implicit_bytes =
+          ls.total_bytes() - ls.bytes_explicit + us.total_bytes() - us.bytes_explicit;
+      for (const SphereMode mode : kSphereModes) {
+        BenchRow build = MakeRow("ist", collision::ToString(mode), "trees");
+        build.voxel_mm = voxel;
+        build.query = "build";
+        build.reps = 1;
+        const double s =
+            mode == SphereMode::kExplicit ? ls.total_seconds() + us.total_seconds() : implicit_s;
+        build.us = {1e6 * s, 1e6 * s};
+        build.bytes =
+            mode == SphereMode::kExplicit ? ls.total_bytes() + us.total_bytes() : implicit_bytes;
+        rows.push_back(build);
+      }
+      BenchRow build = MakeRow("ist", "explicit", "oracle");
+      build.voxel_mm = voxel;
+      build.query = "build";
+      build.reps = 1;
+      build.us = {1e6 * oracle_seconds, 1e6 * oracle_seconds};
+      build.bytes = oracle.MemoryBytes();
+      rows.push_back(build);
+    }
+    Log(options, "IST " + Fixed(voxel, 2) + " mm: built in " + Fixed(oracle_seconds, 2) + " s (" +
+                     std::to_string(oracle.MemoryBytes() >> 20) + " MB); timing the sweep");
+
+    for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
+      const auto& at = poses[k];
+      const double offset = options.offsets_mm[k];
+      auto base = [&](const std::string& variant, const std::string& query) {
+        BenchRow row = MakeRow("ist", variant, "");
+        row.voxel_mm = voxel;
+        row.query = query;
+        row.offset_mm = offset;
+        return row;
+      };
+      collision::CollisionResult res;
+      for (const SphereMode mode : kSphereModes) {
+        collision::CollisionRequest req;
+        req.spheres = mode;
+        req.first_only = true;
+        BenchRow row = base(collision::ToString(mode), "boolean");
+        row.reps = static_cast<int>(at.size());
+        row.us = TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) {
+          collision::Collide(lower, upper, X, req, &res);
+        });
+        collision::Collide(lower, upper, at[0], req, &res);
+        row.pairs = res.overlap ? 1 : 0;
+        speedup(&row, "obb:boolean");
+        rows.push_back(row);
+      }
+      for (const SphereMode mode : kSphereModes) {
+        collision::CollisionRequest req;
+        req.spheres = mode;
+        req.delta_mm = options.delta_mm;
+        BenchRow row = base(collision::ToString(mode), "pairs");
+        row.reps = static_cast<int>(std::min(slow_reps, at.size()));
+        row.us = TimePoses(at, slow_reps, [&](const Eigen::Isometry3d& X) {
+          collision::Collide(lower, upper, X, req, &res);
+        });
+        collision::Collide(lower, upper, at[0], req, &res);
+        row.pairs = res.pairs.size();
+        speedup(&row, "obb:collide-all");
+        rows.push_back(row);
+      }
+      const std::pair<collision::AccuracyLevel, const char*> levels[] = {
+          {collision::AccuracyLevel::kVoxel, "oracle-voxel"},
+          {collision::AccuracyLevel::kSubVoxel, "oracle-subvoxel"},
+          {collision::AccuracyLevel::kExact, "oracle-exact"}};
+      for (const auto& [level, name] : levels) {
+        collision::OracleRequest req;
+        req.level = level;
+        req.contact_band_mm = options.delta_mm;
+        collision::OracleResult result;
+        const std::size_t reps =
+            level == collision::AccuracyLevel::kExact ? slowest_reps : at.size();
+        BenchRow row = base("explicit", name);
+        row.reps = static_cast<int>(std::min(reps, at.size()));
+        row.us =
+            TimePoses(at, reps, [&](const Eigen::Isometry3d& X) { oracle.Query(X, req, &result); });
+        oracle.Query(at[0], req, &result);
+        row.pairs = result.contact_samples;
+        row.min_distance_mm = result.min_distance_mm;
+        row.max_penetration_mm = result.max_penetration_mm;
+        speedup(&row, "obbrss:collide-all");
+        rows.push_back(row);
+      }
+    }
+    Log(options, "IST " + Fixed(voxel, 2) + " mm: done");
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<BenchRow> RunBench(const BenchCase& bc, const BenchOptions& options) {
+  if (options.rounds < 1) throw std::invalid_argument("BenchOptions.rounds must be at least 1");
+  std::vector<BenchRow> rows;
+  for (int round = 0; round < options.rounds; ++round) {
+    if (options.rounds > 1)
+      Log(options, "round " + std::to_string(round + 1) + " of " + std::to_string(options.rounds));
+    std::vector<BenchRow> next = RunBenchRound(bc, options);
+    if (rows.empty()) {
+      rows = std::move(next);
+      continue;
+    }
+    for (std::size_t i = 0; i < rows.size(); ++i) {  // the same rows in the same order
+      rows[i].us.median = std::min(rows[i].us.median, next[i].us.median);
+      rows[i].us.max = std::max(rows[i].us.max, next[i].us.max);
+    }
+  }
+  // Speedups from the merged medians: FCL median / IST median at the offset.
+  std::map<std::pair<std::string, double>, double> fcl_median;
+  for (const BenchRow& r : rows) {
+    if (r.method == "fcl" && r.query != "build")
+      fcl_median[{r.variant + ":" + r.query, r.offset_mm}] = r.us.median;
+  }
+  for (BenchRow& r : rows) {
+    if (r.fcl_reference.empty()) continue;
+    const auto it = fcl_median.find({r.fcl_reference, r.offset_mm});
+    if (it != fcl_median.end() && r.us.median > 0) r.speedup = it->second / r.us.median;
+  }
+  return rows;
+}
+
+std::string BenchCsv(const std::vector<BenchRow>& rows) {
+  std::ostringstream csv;
+  csv << "method,variant,voxel_mm,query,offset_mm,median_us,max_us,rate_hz,pairs,bytes,structure,"
+         "reps,"
+         "min_distance_mm,max_penetration_mm,fcl_reference,speedup_vs_fcl\n";
+  auto num = [](double v, int digits) {
+    return std::isfinite(v) ? Fixed(v, digits) : std::string();
+  };
+  for (const BenchRow& r : rows) {
+    const bool build = r.query == "build";
+    csv << r.method << ',' << r.variant << ',' << num(r.voxel_mm, 3) << ',' << r.query << ','
+        << num(r.offset_mm, 3) << ',' << Fixed(r.us.median, 2) << ',' << Fixed(r.us.max, 2) << ','
+        << (build || r.us.median <= 0 ? std::string() : Fixed(1e6 / r.us.median, 1)) << ','
+        << (build ? std::string() : std::to_string(r.pairs)) << ','
+        << (build ? std::to_string(r.bytes) : std::string()) << ',' << r.structure << ',' << r.reps
+        << ',' << num(r.min_distance_mm, 5) << ',' << num(r.max_penetration_mm, 5) << ','
+        << r.fcl_reference << ',' << num(r.speedup, 2) << '\n';
+  }
+  return csv.str();
+}
+
+namespace {
+
+std::string OffsetLabel(double offset) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+g", offset);
+  return offset == 0.0 ? std::string("0") : std::string(text);
+}
+
+// One series: rate against the offset index, for rows matching `keep`.
+template <class Keep>
+ChartSeries RateSeries(const std::vector<BenchRow>& rows, const std::vector<double>& offsets,
+                       const std::string& name, bool dashed, int color, Keep&& keep) {
+  ChartSeries s;
+  s.name = name;
+  s.dashed = dashed;
+  s.color = color;
+  for (const BenchRow& r : rows) {
+    if (r.query == "build" || !keep(r)) continue;
+    const auto it = std::find(offsets.begin(), offsets.end(), r.offset_mm);
+    if (it == offsets.end() || r.us.median <= 0) continue;
+    s.x.push_back(static_cast<double>(it - offsets.begin()));
+    s.y.push_back(1e6 / r.us.median);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> BenchCharts(const std::vector<BenchRow>& rows,
+                                                             const std::string& subtitle) {
+  std::vector<double> offsets;
+  std::set<double> voxels;
+  for (const BenchRow& r : rows) {
+    if (r.query == "build") continue;
+    if (std::find(offsets.begin(), offsets.end(), r.offset_mm) == offsets.end())
+      offsets.push_back(r.offset_mm);
+    if (std::isfinite(r.voxel_mm)) voxels.insert(r.voxel_mm);
+  }
+  std::vector<std::string> labels;
+  for (const double o : offsets) labels.push_back(OffsetLabel(o));
+  auto chart = [&](const std::string& title) {
+    LineChart c;
+    c.title = title;
+    c.subtitle = subtitle;
+    c.x_label =
+        "offset along the occlusal axis, mm (0 = registered bite, > 0 open, < 0 interpenetrating)";
+    c.y_label = "queries per second (Hz), log";
+    c.log_y = true;
+    c.x_categories = labels;
+    c.references = {{1000.0, "1 kHz (haptic)"}};
+    return c;
+  };
+  auto fcl = [&](const std::string& variant, const std::string& query, int color) {
+    return RateSeries(rows, offsets, "FCL " + variant + " " + query, true, color,
+                      [&](const BenchRow& r) {
+                        return r.method == "fcl" && r.variant == variant && r.query == query;
+                      });
+  };
+  auto add_fcl = [&](LineChart* c,
+                     std::initializer_list<std::pair<const char*, const char*>> which) {
+    int color = 5;
+    for (const auto& [variant, query] : which) {
+      ChartSeries s = fcl(variant, query, color++);
+      if (!s.x.empty()) c->series.push_back(s);
+    }
+  };
+  std::vector<std::pair<std::string, std::string>> files;
+  auto emit = [&](const std::string& file, const LineChart& c) {
+    bool any = false;
+    for (const auto& s : c.series) any = any || !s.x.empty();
+    if (any) files.emplace_back(file, RenderLineChartPng(c));
+  };
+  for (const double v : voxels) {
+    const std::string vs = Fixed(v, v < 0.1 ? 3 : (v < 1 ? 1 : 0));
+    const std::string tag = Fixed(v, 2) + "mm";
+    for (const char* query : {"boolean", "pairs"}) {
+      LineChart c =
+          chart(std::string(query == std::string("boolean") ? "Boolean collision query"
+                                                            : "All voxel pairs within the band") +
+                ", IST at " + vs + " mm voxels, against FCL");
+      int color = 0;
+      for (const char* variant : {"simple", "optimized", "explicit"}) {
+        c.series.push_back(RateSeries(rows, offsets, std::string("IST ") + variant, false, color++,
+                                      [&](const BenchRow& r) {
+                                        return r.method == "ist" && r.variant == variant &&
+                                               r.query == query && r.voxel_mm == v;
+                                      }));
+      }
+      if (query == std::string("boolean")) {
+        add_fcl(&c, {{"obb", "boolean"}, {"obbrss", "boolean"}});
+      } else {
+        add_fcl(&c, {{"obb", "collide-all"}, {"obbrss", "collide-all"}});
+      }
+      emit(std::string(query) + "-" + tag + ".png", c);
+    }
+    LineChart c =
+        chart("Contact oracle at " + vs + " mm voxels (contacts within the band + penetration)");
+    int color = 0;
+    for (const char* query : {"oracle-voxel", "oracle-subvoxel", "oracle-exact"}) {
+      c.series.push_back(RateSeries(
+          rows, offsets, std::string("IST ") + query, false, color++, [&](const BenchRow& r) {
+            return r.method == "ist" && r.query == query && r.voxel_mm == v;
+          }));
+    }
+    add_fcl(&c, {{"obbrss", "collide-all"}, {"obbrss", "distance"}});
+    emit("oracle-" + tag + ".png", c);
+  }
+  // Across voxel sizes: explicit boolean and sub-voxel oracle.
+  for (const char* query : {"boolean", "oracle-subvoxel"}) {
+    LineChart c = chart(std::string(query == std::string("boolean") ? "Boolean query (explicit IST)"
+                                                                    : "Sub-voxel oracle") +
+                        " by voxel size, against FCL");
+    int color = 0;
+    for (const double v : voxels) {
+      c.series.push_back(RateSeries(rows, offsets, "IST " + Fixed(v, 2) + " mm", false, color++,
+                                    [&](const BenchRow& r) {
+                                      return r.method == "ist" && r.variant == "explicit" &&
+                                             r.query == query && r.voxel_mm == v;
+                                    }));
+    }
+    if (query == std::string("boolean")) {
+      add_fcl(&c, {{"obb", "boolean"}});
+    } else {
+      add_fcl(&c, {{"obbrss", "collide-all"}});
+    }
+    emit(std::string(query) + "-by-voxel.png", c);
+  }
+  return files;
+}
+
+std::string BenchSummary(const std::vector<BenchRow>& rows) {
+  // Worst median over the offsets, per method/variant/voxel/query; and the
+  // smallest speedup over FCL.
+  struct Worst {
+    double us = 0.0, offset = 0.0, min_speedup = std::numeric_limits<double>::infinity();
+    std::string reference;
+  };
+  std::map<std::string, Worst> worst;
+  std::vector<std::string> order;
+  for (const BenchRow& r : rows) {
+    if (r.query == "build") continue;
+    const std::string key =
+        r.method + " " + r.variant + " " +
+        (std::isfinite(r.voxel_mm) ? Fixed(r.voxel_mm, 2) + "mm " : std::string()) + r.query;
+    if (!worst.count(key)) order.push_back(key);
+    Worst& w = worst[key];
+    if (r.us.median >= w.us) {
+      w.us = r.us.median;
+      w.offset = r.offset_mm;
+    }
+    if (std::isfinite(r.speedup)) {
+      w.min_speedup = std::min(w.min_speedup, r.speedup);
+      w.reference = r.fcl_reference;
+    }
+  }
+  std::ostringstream s;
+  s << "worst median over the sweep (thread CPU us), and the smallest speedup over the matching "
+       "FCL query\n";
+  for (const std::string& key : order) {
+    const Worst& w = worst[key];
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-40s %10.1f us at %+.2f mm", key.c_str(), w.us, w.offset);
+    s << line;
+    if (std::isfinite(w.min_speedup)) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%.3g", w.min_speedup);
+      s << "   >= " << ratio << "x FCL " << w.reference;
+    }
+    s << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace occlude::app

@@ -1,0 +1,314 @@
+// Line charts drawn with OpenCV (see chart.h).
+#include "chart/chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace occlude::app {
+namespace {
+
+// Tableau-like palette, BGR.
+const cv::Scalar kPalette[] = {
+    {180, 119, 31}, {14, 127, 255},  {44, 160, 44},   {40, 39, 214},  {189, 103, 148},
+    {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23},
+};
+constexpr int kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
+const cv::Scalar kInk(40, 40, 40), kGrid(225, 225, 225), kWhite(255, 255, 255);
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+// One axis: data range mapped to pixels, with ticks.
+struct Axis {
+  bool log = false;
+  double lo = 0.0, hi = 1.0;  // in transformed units (log10 when log)
+  double Transform(double v) const { return log ? std::log10(v) : v; }
+  bool Drawable(double v) const { return std::isfinite(v) && (!log || v > 0.0); }
+  double Fraction(double v) const { return (Transform(v) - lo) / (hi - lo); }
+};
+
+// Nice linear ticks (steps of 1, 2 or 5 times a power of ten).
+std::vector<double> LinearTicks(double lo, double hi) {
+  const double span = hi - lo;
+  const double raw = span / 6.0;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (const double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * mag;
+    if (step >= raw) break;
+  }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) {
+    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  }
+  return ticks;
+}
+
+std::string FormatTick(double v) {
+  char text[32];
+  const double a = std::abs(v);
+  if (a != 0.0 && (a >= 1e5 || a < 1e-3)) {
+    std::snprintf(text, sizeof text, "%.0e", v);
+  } else {
+    std::snprintf(text, sizeof text, "%g", v);
+  }
+  return text;
+}
+
+void PutText(cv::Mat& img, const std::string& text, cv::Point at, double scale,
+             const cv::Scalar& color, int thickness = 1) {
+  cv::putText(img, text, at, kFont, scale, color, thickness, cv::LINE_AA);
+}
+
+cv::Size TextSize(const std::string& text, double scale, int thickness = 1) {
+  int baseline = 0;
+  return cv::getTextSize(text, kFont, scale, thickness, &baseline);
+}
+
+void DashedLine(cv::Mat& img, cv::Point2d a, cv::Point2d b, const cv::Scalar& color,
+                int thickness) {
+  const double length = cv::norm(b - a);
+  const double dash = 9.0, gap = 6.0;
+  for (double s = 0.0; s < length; s += dash + gap) {
+    const double e = std::min(length, s + dash);
+    const cv::Point2d p = a + (b - a) * (s / length), q = a + (b - a) * (e / length);
+    cv::line(img, p, q, color, thickness, cv::LINE_AA);
+  }
+}
+
+}  // namespace
+
+int ChartTextWidth(const std::string& text, double scale) { return TextSize(text, scale).width; }
+
+std::vector<std::string> WrapChartText(const std::string& text, double scale, int max_width_px) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  std::istringstream words(text);
+  while (words >> word) {
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && TextSize(longer, scale).width > max_width_px) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+std::string RenderLineChartPng(const LineChart& chart) {
+  const bool categorical = !chart.x_categories.empty();
+  Axis ax, ay;
+  ax.log = chart.log_x && !categorical;
+  ay.log = chart.log_y;
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  double y_lo = x_lo, y_hi = -x_lo;
+  std::size_t drawable = 0;
+  for (const ChartSeries& s : chart.series) {
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!ax.Drawable(s.x[i]) || !ay.Drawable(s.y[i])) continue;
+      x_lo = std::min(x_lo, ax.Transform(s.x[i]));
+      x_hi = std::max(x_hi, ax.Transform(s.x[i]));
+      y_lo = std::min(y_lo, ay.Transform(s.y[i]));
+      y_hi = std::max(y_hi, ay.Transform(s.y[i]));
+      ++drawable;
+    }
+  }
+  if (drawable == 0) throw std::invalid_argument("chart '" + chart.title + "': no drawable point");
+  for (const ChartReference& r : chart.references) {
+    if (!ay.Drawable(r.y)) continue;
+    y_lo = std::min(y_lo, ay.Transform(r.y));
+    y_hi = std::max(y_hi, ay.Transform(r.y));
+  }
+  for (const double y : chart.y_include) {
+    if (!ay.Drawable(y)) continue;
+    y_lo = std::min(y_lo, ay.Transform(y));
+    y_hi = std::max(y_hi, ay.Transform(y));
+  }
+  if (categorical) {
+    x_lo = -0.5;
+    x_hi = static_cast<double>(chart.x_categories.size()) - 0.5;
+  }
+  if (ay.log) {
+    y_lo = std::floor(y_lo);
+    y_hi = std::max(std::ceil(y_hi), y_lo + 1.0);
+  } else {
+    const double pad = y_hi > y_lo ? 0.05 * (y_hi - y_lo) : std::max(1.0, std::abs(y_hi)) * 0.1;
+    y_lo -= pad;
+    y_hi += pad;
+  }
+  if (ax.log) {  // padded, not snapped to decades (points stay off the frame)
+    const double span = std::max(x_hi - x_lo, 0.5), mid = 0.5 * (x_lo + x_hi);
+    x_lo = std::min(x_lo, mid - 0.5 * span) - 0.06 * span;
+    x_hi = std::max(x_hi, mid + 0.5 * span) + 0.06 * span;
+  } else if (!categorical) {
+    const double pad = x_hi > x_lo ? 0.03 * (x_hi - x_lo) : 1.0;
+    x_lo -= pad;
+    x_hi += pad;
+  }
+  ax.lo = x_lo, ax.hi = x_hi, ay.lo = y_lo, ay.hi = y_hi;
+
+  cv::Mat img(chart.height, chart.width, CV_8UC3, kWhite);
+  const int left = 95, right = 300, bottom = 75;
+  constexpr double kSubtitleScale = 0.45;
+  constexpr int kSubtitleLine = 18;  // pixels per subtitle line
+  const std::vector<std::string> subtitle =
+      WrapChartText(chart.subtitle, kSubtitleScale, chart.width - left - 20);
+  const int top = subtitle.empty() ? 60 : 62 + kSubtitleLine * static_cast<int>(subtitle.size());
+  const cv::Rect plot(left, top, chart.width - left - right, chart.height - top - bottom);
+  auto px = [&](double fx) { return plot.x + fx * plot.width; };
+  auto py = [&](double fy) { return plot.y + (1.0 - fy) * plot.height; };
+
+  // Grid and ticks.
+  std::vector<std::pair<double, std::string>> y_ticks, x_ticks;
+  if (ay.log) {
+    for (double e = ay.lo; e <= ay.hi + 1e-9; e += 1.0)
+      y_ticks.emplace_back(e, FormatTick(std::pow(10.0, e)));
+  } else {
+    for (const double t : LinearTicks(ay.lo, ay.hi)) y_ticks.emplace_back(t, FormatTick(t));
+  }
+  if (categorical) {
+    for (std::size_t i = 0; i < chart.x_categories.size(); ++i) {
+      x_ticks.emplace_back(static_cast<double>(i), chart.x_categories[i]);
+    }
+  } else if (ax.log) {
+    // Decades, and 2x / 5x in between when fewer than three decades show.
+    const bool fine = std::floor(ax.hi) - std::ceil(ax.lo) < 2.0;
+    for (double e = std::floor(ax.lo); e <= ax.hi; e += 1.0) {
+      for (const double m : {1.0, 2.0, 5.0}) {
+        const double t = e + std::log10(m);
+        if ((m == 1.0 || fine) && t >= ax.lo && t <= ax.hi)
+          x_ticks.emplace_back(t, FormatTick(std::pow(10.0, t)));
+      }
+    }
+  } else {
+    for (const double t : LinearTicks(ax.lo, ax.hi)) x_ticks.emplace_back(t, FormatTick(t));
+  }
+  for (const auto& [t, label] : y_ticks) {
+    const double y = py((t - ay.lo) / (ay.hi - ay.lo));
+    cv::line(img, cv::Point2d(plot.x, y), cv::Point2d(plot.x + plot.width, y), kGrid, 1);
+    if (ay.log && t + 1.0 <= ay.hi + 1e-9) {  // minor decade lines
+      for (int m = 2; m <= 9; ++m) {
+        const double ym = py((t + std::log10(m) - ay.lo) / (ay.hi - ay.lo));
+        cv::line(img, cv::Point2d(plot.x, ym), cv::Point2d(plot.x + 6, ym), kInk, 1);
+      }
+    }
+    const cv::Size size = TextSize(label, 0.5);
+    PutText(img, label, cv::Point(plot.x - 8 - size.width, static_cast<int>(y) + size.height / 2),
+            0.5, kInk);
+  }
+  for (const auto& [t, label] : x_ticks) {
+    const double x = px((t - ax.lo) / (ax.hi - ax.lo));
+    cv::line(img, cv::Point2d(x, plot.y), cv::Point2d(x, plot.y + plot.height), kGrid, 1);
+    const cv::Size size = TextSize(label, 0.45);
+    PutText(img, label, cv::Point(static_cast<int>(x) - size.width / 2, plot.y + plot.height + 20),
+            0.45, kInk);
+  }
+  if (ax.log) {  // minor marks at 2..9 times each decade
+    for (double e = std::floor(ax.lo); e <= ax.hi; e += 1.0) {
+      for (int m = 2; m <= 9; ++m) {
+        const double t = e + std::log10(m);
+        if (t < ax.lo || t > ax.hi) continue;
+        const double xm = px((t - ax.lo) / (ax.hi - ax.lo));
+        cv::line(img, cv::Point2d(xm, plot.y + plot.height),
+                 cv::Point2d(xm, plot.y + plot.height - 6), kInk, 1);
+      }
+    }
+  }
+  cv::rectangle(img, plot, kInk, 1);
+
+  // Reference lines.
+  for (const ChartReference& r : chart.references) {
+    if (!ay.Drawable(r.y)) continue;
+    const double y = py(ay.Fraction(r.y));
+    DashedLine(img, cv::Point2d(plot.x, y), cv::Point2d(plot.x + plot.width, y),
+               cv::Scalar(0, 0, 170), 1);
+    PutText(img, r.label, cv::Point(plot.x + 6, static_cast<int>(y) - 5), 0.45,
+            cv::Scalar(0, 0, 170));
+  }
+
+  // Series.
+  cv::Mat clip = img(plot);
+  for (std::size_t k = 0; k < chart.series.size(); ++k) {
+    const ChartSeries& s = chart.series[k];
+    const cv::Scalar color =
+        kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
+    bool have_prev = false;
+    cv::Point2d prev;
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!ax.Drawable(s.x[i]) || !ay.Drawable(s.y[i])) {
+        have_prev = false;
+        continue;
+      }
+      const cv::Point2d p(px(ax.Fraction(s.x[i])) - plot.x, py(ay.Fraction(s.y[i])) - plot.y);
+      if (have_prev && !s.markers_only) {
+        if (s.dashed) {
+          DashedLine(clip, prev, p, color, 2);
+        } else {
+          cv::line(clip, prev, p, color, 2, cv::LINE_AA);
+        }
+      }
+      if (s.dashed) {
+        cv::rectangle(clip, p - cv::Point2d(3, 3), p + cv::Point2d(3, 3), color, cv::FILLED);
+      } else {
+        cv::circle(clip, p, 4, color, cv::FILLED, cv::LINE_AA);
+      }
+      if (i < s.labels.size() && !s.labels[i].empty()) {
+        PutText(clip, s.labels[i], cv::Point(static_cast<int>(p.x) + 6, static_cast<int>(p.y) - 6),
+                0.4, color);
+      }
+      prev = p;
+      have_prev = true;
+    }
+  }
+
+  // Titles, axis labels, legend.
+  PutText(img, chart.title, cv::Point(left, 30), 0.7, kInk, 2);
+  for (std::size_t i = 0; i < subtitle.size(); ++i) {
+    PutText(img, subtitle[i], cv::Point(left, 58 + kSubtitleLine * static_cast<int>(i)),
+            kSubtitleScale, kInk);
+  }
+  const cv::Size xs = TextSize(chart.x_label, 0.55);
+  PutText(img, chart.x_label, cv::Point(plot.x + (plot.width - xs.width) / 2, chart.height - 22),
+          0.55, kInk);
+  {  // y label, rotated
+    const cv::Size ys = TextSize(chart.y_label, 0.55);
+    cv::Mat label(ys.height + 10, ys.width + 4, CV_8UC3, kWhite);
+    PutText(label, chart.y_label, cv::Point(2, ys.height + 2), 0.55, kInk);
+    cv::Mat rotated;
+    cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+    const int x0 = 12, y0 = std::max(0, plot.y + (plot.height - rotated.rows) / 2);
+    if (y0 + rotated.rows <= img.rows && x0 + rotated.cols <= img.cols) {
+      rotated.copyTo(img(cv::Rect(x0, y0, rotated.cols, rotated.rows)));
+    }
+  }
+  int ly = top + 12;
+  const int lx = plot.x + plot.width + 18;
+  for (std::size_t k = 0; k < chart.series.size(); ++k) {
+    const ChartSeries& s = chart.series[k];
+    const cv::Scalar color =
+        kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
+    if (s.markers_only) {
+      cv::circle(img, cv::Point(lx + 17, ly - 5), 4, color, cv::FILLED, cv::LINE_AA);
+    } else if (s.dashed) {
+      DashedLine(img, cv::Point2d(lx, ly - 5), cv::Point2d(lx + 34, ly - 5), color, 2);
+    } else {
+      cv::line(img, cv::Point(lx, ly - 5), cv::Point(lx + 34, ly - 5), color, 2, cv::LINE_AA);
+    }
+    PutText(img, s.name, cv::Point(lx + 42, ly), 0.45, kInk);
+    ly += 22;
+  }
+
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", img, png))
+    throw std::runtime_error("chart '" + chart.title + "': PNG encoding failed");
+  return std::string(png.begin(), png.end());
+}
+
+}  // namespace occlude::app

@@ -1,0 +1,138 @@
+// `occlude validate`: every solver from seeded perturbed starts of a case with a known bite;
+// CSV per run, summary per solver and magnitude, stability and error charts (validate.h).
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "base/output_files.h"
+#include "base/user_error.h"
+#include "bench/bench_inputs.h"
+#include "cli/commands.h"
+#include "cli/options.h"
+#include "session/jaw_pair.h"
+#include "validate/validate.h"
+
+namespace occlude::app {
+namespace {
+
+struct ValidateArgs {
+  std::string case_dir;
+  std::size_t synthetic = 0;
+  std::vector<std::string> solvers = {"ceres", "coarse-to-fine", "nlopt-local", "nlopt-global"};
+  int starts = 20;
+  std::string magnitudes = "1:2,2:3,5:10";
+  std::uint32_t seed = 1;
+  std::vector<double> voxels = {0.8, 0.4};
+  bool exact = false;
+  int threads = 0;
+  int solver_starts = 4;
+  std::string nlopt_local = planner::ToString(planner::PlanRequest{}.nlopt_local);
+  double band_mm = 0.1;
+  double max_penetration_mm = 0.05;
+  std::string out;
+};
+
+void RunValidateCommand(const ValidateArgs& args) {
+  ValidateOptions options;
+  options.solvers.clear();
+  for (const std::string& name : args.solvers) {
+    try {
+      options.solvers.push_back(planner::SolverKindFromName(name));
+    } catch (const std::invalid_argument& e) {
+      throw UserError(std::string("--solver: ") + e.what());
+    }
+  }
+  options.magnitudes = ParseMagnitudes(args.magnitudes);
+  options.starts = args.starts;
+  options.seed = args.seed;
+  options.voxels_mm = args.voxels;
+  options.exact_last = args.exact;
+  options.threads = args.threads;
+  options.solver_starts = args.solver_starts;
+  try {
+    options.nlopt_local = planner::NloptLocalMethodFromName(args.nlopt_local);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(std::string("--nlopt-local: ") + e.what());
+  }
+  options.contact_band_mm = args.band_mm;
+  options.max_penetration_mm = args.max_penetration_mm;
+  options.log = &std::cerr;
+  PrepareOutputDir(args.out);
+  const JawPairCase jaws = args.case_dir.empty() ? SyntheticJawPairCase(args.synthetic, args.seed)
+                                                 : LoadCaseFolder(args.case_dir);
+  const std::string machine = MachineLine();
+  std::cerr << "validate: case " << jaws.name << ", " << options.solvers.size() << " solvers x "
+            << options.magnitudes.size() << " magnitudes x " << options.starts << " starts; "
+            << machine << "\n";
+  const ValidateResult result = RunValidation(jaws, options);
+  const std::filesystem::path out(args.out);
+  const std::string summary = ValidateSummaryText(result, options, machine);
+  const auto charts =
+      ValidateCharts(result, options, jaws.name + " | " + machine + " | one core per run");
+  WriteFileAtomic(out / "validate.csv", ValidateCsv(result));
+  WriteFileAtomic(out / "validate-summary.csv", ValidateSummaryCsv(result));
+  WriteFileAtomic(out / "validate-summary.txt", summary);
+  WriteFileAtomic(out / "reference-path.csv", ReferencePathCsv(result));
+  for (const auto& [file, png] : charts) WriteFileAtomic(out / file, png);
+  std::cout << summary;
+  std::cerr << "validate: wrote " << (out / "validate.csv").string()
+            << ", the summaries and the charts\n";
+}
+
+}  // namespace
+
+void AddValidateCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "validate",
+      "Run every solver from seeded perturbed starts of a known bite; CSV, summary and charts");
+  auto args = std::make_shared<ValidateArgs>();
+  auto* case_opt = cmd->add_option("--case", args->case_dir,
+                                   "Case folder with upper.stl and lower.stl at the bite");
+  auto* synth_opt = cmd->add_option("--synthetic", args->synthetic,
+                                    "Use the generated jaw pair with this many triangles per jaw");
+  case_opt->excludes(synth_opt);
+  synth_opt->excludes(case_opt);
+  cmd->add_option("--solver", args->solvers,
+                  "Solvers (comma separated): ceres, coarse-to-fine, nlopt-local, nlopt-global")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--starts", args->starts, "Perturbed starts per magnitude")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--magnitudes", args->magnitudes,
+                  "Perturbation magnitudes MM:DEG (comma separated; 0:0 = closing run)")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of the perturbations (and of the synthetic pair)")
+      ->capture_default_str();
+  cmd->add_option("--voxels", args->voxels, "Oracle schedule, coarse first, mm (comma separated)")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(MmBetween(0.02, true, 5.0, "a voxel size in mm between 0.02 and 5"));
+  cmd->add_flag("--exact", args->exact, "Add a last stage on exact triangle distances");
+  cmd->add_option("--threads", args->threads, "Runs in parallel (each on one core); 0 = all cores")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
+  cmd->add_option("--solver-starts", args->solver_starts,
+                  "Internal starts of coarse-to-fine and nlopt-global")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  cmd->add_option("--nlopt-local", args->nlopt_local,
+                  "NLopt local method: cobyla, auglag-bobyqa, auglag-sbplx")
+      ->capture_default_str();
+  cmd->add_option("--band", args->band_mm, "Contact band, mm")
+      ->capture_default_str()
+      ->check(BandMm());
+  cmd->add_option("--max-penetration", args->max_penetration_mm, "Allowed penetration, mm")
+      ->capture_default_str()
+      ->check(MmBetween(0.0, true, 5.0, "a depth in mm between 0 and 5"));
+  cmd->add_option("--out", args->out, "Output folder")->required();
+  cmd->callback([args] {
+    if (args->case_dir.empty() && args->synthetic == 0) {
+      throw UserError(
+          "validate: give --case DIR (with upper.stl and lower.stl at the bite) or --synthetic N");
+    }
+    RunValidateCommand(*args);
+  });
+}
+
+}  // namespace occlude::app

@@ -1,0 +1,183 @@
+// The report's z-buffered rasterizer (see render_raster.h).
+#include "report/render_raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace occlude::app::render {
+namespace {
+
+constexpr float kAmbient = 0.28f;
+constexpr float kBackFaceDim = 0.55f;
+
+struct Vertex2 {
+  double x, y, depth;
+  float value;
+  Eigen::Vector3f n;
+};
+
+double Edge(const Vertex2& a, const Vertex2& b, double px, double py) {
+  return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
+}
+
+void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool back_face,
+                  const Eigen::Vector3f& light, std::int16_t id, GBuffer* g) {
+  const double area = Edge(a, b, c.x, c.y);
+  if (std::abs(area) < 1e-12) return;
+  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
+  const int x1 = std::min(g->width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
+  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
+  const int y1 = std::min(g->height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+  for (int y = y0; y <= y1; ++y) {
+    const double py = y + 0.5;
+    for (int x = x0; x <= x1; ++x) {
+      const double px = x + 0.5;
+      const double wa = Edge(b, c, px, py) / area;
+      const double wb = Edge(c, a, px, py) / area;
+      const double wc = 1.0 - wa - wb;
+      if (wa < 0 || wb < 0 || wc < 0) continue;
+      const double depth = wa * a.depth + wb * b.depth + wc * c.depth;
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(g->width) +
+                            static_cast<std::size_t>(x);
+      if (depth >= static_cast<double>(g->depth[i])) continue;
+      g->depth[i] = static_cast<float>(depth);
+      g->value[i] =
+          static_cast<float>(wa * static_cast<double>(a.value) + wb * static_cast<double>(b.value) +
+                             wc * static_cast<double>(c.value));
+      Eigen::Vector3f n = static_cast<float>(wa) * a.n + static_cast<float>(wb) * b.n +
+                          static_cast<float>(wc) * c.n;
+      const float len = n.norm();
+      const float lambert = len > 0 ? std::abs(n.dot(light)) / len : 0.0f;
+      g->shade[i] = (kAmbient + (1.0f - kAmbient) * lambert) * (back_face ? kBackFaceDim : 1.0f);
+      g->id[i] = id;
+    }
+  }
+}
+
+}  // namespace
+
+Image::Image(int w, int h, Rgb fill)
+    : width(w), height(h), rgb(3 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) {
+  for (std::size_t i = 0; i < rgb.size(); i += 3) {
+    rgb[i] = fill[0];
+    rgb[i + 1] = fill[1];
+    rgb[i + 2] = fill[2];
+  }
+}
+
+OrthoView OrthoView::Scaled(double factor) const {
+  OrthoView v = *this;
+  v.px_per_mm *= factor;
+  v.width = static_cast<int>(std::lround(width * factor));
+  v.height = static_cast<int>(std::lround(height * factor));
+  v.offset_px = offset_px * factor;
+  return v;
+}
+
+OrthoView FitView(const Eigen::Vector3d& view_L, const Eigen::Vector3d& up_L,
+                  const std::vector<Eigen::Vector3d>& points_L, int width, int height,
+                  int margin_px) {
+  OrthoView v;
+  v.view_L = view_L.normalized();
+  v.up_L = (up_L - up_L.dot(v.view_L) * v.view_L).normalized();
+  v.right_L = v.up_L.cross(-v.view_L).normalized();
+  v.width = width;
+  v.height = height;
+  Eigen::AlignedBox2d box;
+  for (const auto& p : points_L) box.extend(Eigen::Vector2d(p.dot(v.right_L), p.dot(v.up_L)));
+  if (box.isEmpty()) return v;
+  v.centre_mm = box.center();
+  const Eigen::Vector2d size = box.sizes().cwiseMax(1e-3);
+  v.px_per_mm =
+      std::min((width - 2.0 * margin_px) / size.x(), (height - 2.0 * margin_px) / size.y());
+  return v;
+}
+
+std::vector<Eigen::Vector3f> VertexNormals(const io::TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d> sum(mesh.num_vertices(), Eigen::Vector3d::Zero());
+  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const Eigen::Vector3d n =
+        (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+    for (int k = 0; k < 3; ++k) sum[static_cast<std::size_t>(mesh.triangles[t][k])] += n;
+  }
+  std::vector<Eigen::Vector3f> out(sum.size());
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    out[i] = sum[i].norm() > 0 ? Eigen::Vector3f(sum[i].normalized().cast<float>())
+                               : Eigen::Vector3f::Zero();
+  }
+  return out;
+}
+
+GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces) {
+  GBuffer g;
+  g.width = view.width;
+  g.height = view.height;
+  const std::size_t n = static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
+  g.depth.assign(n, std::numeric_limits<float>::infinity());
+  g.value.assign(n, 0.0f);
+  g.shade.assign(n, 0.0f);
+  g.id.assign(n, -1);
+  OrthoView local = view;
+  local.offset_px = Eigen::Vector2d::Zero();
+  // Light from near the viewer, a little from above and the right, for relief.
+  const Eigen::Vector3f light =
+      (-view.view_L + 0.35 * view.up_L + 0.25 * view.right_L).normalized().cast<float>();
+  for (const Surface& s : surfaces) {
+    const io::TriangleMesh& mesh = *s.mesh;
+    const std::vector<Eigen::Vector3f> normals = VertexNormals(mesh);
+    const Eigen::Matrix3f R = s.X_LM.linear().cast<float>();
+    std::vector<Vertex2> v(mesh.num_vertices());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Vector3d p_L = s.X_LM * mesh.vertices[i];
+      const Eigen::Vector2d px = local.ToPixel(p_L);
+      v[i] = {px.x(), px.y(), local.Depth(p_L), s.vertex_values ? (*s.vertex_values)[i] : 0.0f,
+              R * normals[i]};
+    }
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+      const auto& tri = mesh.triangles[t];
+      const Vertex2& a = v[static_cast<std::size_t>(tri[0])];
+      const Vertex2& b = v[static_cast<std::size_t>(tri[1])];
+      const Vertex2& c = v[static_cast<std::size_t>(tri[2])];
+      // Image y points down, so an outward-facing (CCW seen from outside) triangle is clockwise
+      // here.
+      const bool back = Edge(a, b, c.x, c.y) > 0;
+      DrawTriangle(a, b, c, back, light, static_cast<std::int16_t>(s.id), &g);
+    }
+  }
+  return g;
+}
+
+Image Resolve(const GBuffer& g, const std::function<Rgb(int id, float value)>& colour,
+              Rgb background, int factor) {
+  const int w = g.width / factor;
+  const int h = g.height / factor;
+  Image out(w, h, background);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float acc[3] = {0, 0, 0};
+      for (int dy = 0; dy < factor; ++dy) {
+        for (int dx = 0; dx < factor; ++dx) {
+          const std::size_t i =
+              static_cast<std::size_t>(y * factor + dy) * static_cast<std::size_t>(g.width) +
+              static_cast<std::size_t>(x * factor + dx);
+          if (g.id[i] < 0) {
+            for (int k = 0; k < 3; ++k) acc[k] += background[static_cast<std::size_t>(k)];
+            continue;
+          }
+          const Rgb c = colour(g.id[i], g.value[i]);
+          for (int k = 0; k < 3; ++k)
+            acc[k] += std::min(255.0f, c[static_cast<std::size_t>(k)] * g.shade[i]);
+        }
+      }
+      const float norm = 1.0f / static_cast<float>(factor * factor);
+      out.Set(x, y,
+              {static_cast<std::uint8_t>(acc[0] * norm + 0.5f),
+               static_cast<std::uint8_t>(acc[1] * norm + 0.5f),
+               static_cast<std::uint8_t>(acc[2] * norm + 0.5f)});
+    }
+  }
+  return out;
+}
+
+}  // namespace occlude::app::render

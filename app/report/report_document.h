@@ -1,0 +1,39 @@
+// The report's text outputs: metrics.json (contact and penetration totals, spots,
+// per-tooth table, settings, timings), pose.json (X_LU readable by ReadPoseFile,
+// plus translation/rotation about the pivot) and report.html (one self-contained
+// page: pose, metrics, maps as embedded base64 PNG, per-tooth table, settings).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config/case_config.h"
+#include "report/report_analysis.h"
+#include "session/case_jaws.h"
+
+namespace occlude::app {
+
+struct ReportInputs {
+  const CaseConfig* config = nullptr;
+  const CaseJaws* jaws = nullptr;
+  const ReportAnalysis* analysis = nullptr;
+  std::string pose_source;  ///< "start pose of the config" or the pose file
+  /// (title, PNG bytes, file name) of each picture, in page order.
+  struct Picture {
+    std::string title, png, file;
+  };
+  std::vector<Picture> pictures;
+  /// From propose/refine: a JSON object (text) stored under "search" in metrics.json, and an
+  /// HTML fragment (the proposals, the points treated as scan artefacts) after the metrics.
+  std::string search_json;
+  std::string search_html;
+};
+
+std::string MetricsJson(const ReportInputs& in);
+std::string PoseJson(const ReportInputs& in);
+std::string ReportHtml(const ReportInputs& in);
+
+/// Standard base64 (RFC 4648, with padding).
+std::string Base64(const std::string& bytes);
+
+}  // namespace occlude::app

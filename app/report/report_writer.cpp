@@ -1,0 +1,74 @@
+// The report of one pose as files (see report_writer.h).
+#include "report/report_writer.h"
+
+#include <thread>
+
+#include "base/output_files.h"
+#include "base/timing.h"
+#include "base/user_error.h"
+#include "occlude/io/mesh_io.h"
+#include "report/report_document.h"
+#include "report/report_images.h"
+
+namespace occlude::app {
+
+ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
+                            const std::string& pose_source, const std::string& search_json,
+                            const std::string& search_html) {
+  const CaseConfig& config = session.config();
+  const CaseJaws& jaws = session.jaws();
+  const double t0 = NowSeconds();
+  const render::MapScale scale{config.report.map_max_mm, config.contact_band_mm,
+                               config.report.map_penetration_from_mm};
+  const int w = config.report.image_width_px;
+  std::string png[4];
+  {
+    // The two maps on one thread, the two views on another (each renders independently).
+    std::thread views([&] {
+      png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w));
+      png[3] = EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
+    });
+    png[0] = EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image);
+    png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image);
+    views.join();
+  }
+  analysis.timings_s.emplace_back("render", NowSeconds() - t0);
+  ReportInputs in;
+  in.config = &config;
+  in.jaws = &jaws;
+  in.analysis = &analysis;
+  in.pose_source = pose_source;
+  in.search_json = search_json;
+  in.search_html = search_html;
+  in.pictures = {{"Lower arch, occlusal contact map", png[0], "lower_map.png"},
+                 {"Upper arch, occlusal contact map", png[1], "upper_map.png"},
+                 {"Frontal view", png[2], "frontal.png"},
+                 {"Right lateral view", png[3], "lateral.png"}};
+  ReportFiles out;
+  for (const auto& p : in.pictures) out.files.emplace_back(p.file, p.png);
+  out.files.emplace_back("metrics.json", MetricsJson(in));
+  out.files.emplace_back("pose.json", PoseJson(in));
+  out.files.emplace_back("report.html", ReportHtml(in));
+  out.upper_at_pose = jaws.upper_U->Transformed(analysis.X_LU);
+  return out;
+}
+
+void WriteReportFiles(const std::filesystem::path& out, const ReportFiles& files,
+                      const std::vector<std::pair<std::string, std::string>>& extra) {
+  for (const auto& [name, content] : extra) WriteFileAtomic(out / name, content);
+  for (const auto& [name, content] : files.files) {
+    if (name == "report.html") continue;  // last: its presence means the report is complete
+    WriteFileAtomic(out / name, content);
+  }
+  try {
+    io::WriteBinaryStl(files.upper_at_pose, out / "upper_at_pose.stl",
+                       "occlude upper jaw at the report pose (frame L, mm)");
+  } catch (const io::MeshError& e) {
+    throw UserError(e.what());
+  }
+  for (const auto& [name, content] : files.files) {
+    if (name == "report.html") WriteFileAtomic(out / name, content);
+  }
+}
+
+}  // namespace occlude::app

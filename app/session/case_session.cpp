@@ -1,0 +1,252 @@
+// A case's models, built once (see case_session.h).
+#include "session/case_session.h"
+
+#include <algorithm>
+#include <iostream>
+#include <sstream>
+
+#include "base/user_error.h"
+#include "occlude/collision/region_of_interest.h"
+#include "occlude/collision/voxel_grid.h"
+#include "session/jaw_checks.h"
+#include "session/memory_guard.h"
+
+namespace occlude::app {
+namespace {
+
+// The map fields use coarse voxels: Exact() is exact at any voxel size, and a coarse grid
+// keeps the search for a 1 mm reach to a few voxels per vertex.
+constexpr double kMapVoxelMm = 0.4;
+
+// A region keeping at least this share of a jaw's triangles is not worth a cut (session_region.h).
+constexpr double kWholeAboveShare = 0.95;
+
+collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
+  collision::VoxelizeOptions options;
+  options.voxel_size_mm = kMapVoxelMm;
+  options.classify_proximity = false;
+  options.classify_interior = false;
+  const collision::VoxelGrid grid = collision::Voxelize(*mesh, options);
+  collision::NarrowBandOptions band;
+  band.dilation_voxels = 0;
+  return collision::NarrowBandSdf::Build(std::move(mesh), grid, band);
+}
+
+std::string Mm(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<double> ScheduleVoxels(double finest_mm) {
+  if (finest_mm < 0.4) return {0.8, 0.4, finest_mm};
+  return {std::max(0.8, 2.0 * finest_mm), finest_mm};
+}
+
+std::vector<double> ScheduleVoxels(const CaseConfig& config) {
+  return ScheduleVoxels(config.VoxelSizeMm());
+}
+
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                double voxel_mm) {
+  // (The config's voxel size is its resolution choice; the guard asks about others.)
+  const std::vector<double> voxels = ScheduleVoxels(voxel_mm);
+  collision::OracleOptions base;
+  base.sample_spacing_mm = config.sample_spacing_mm;
+  collision::MemoryEstimate total;
+  for (std::size_t i = 0; i < voxels.size(); ++i) {
+    total += collision::EstimateOracleMemory(*jaws.lower_L, *jaws.upper_U,
+                                             planner::StageOracleOptions(base, voxels, i));
+  }
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.lower_L, kMapVoxelMm, 0);
+  total += collision::EstimateNarrowBandSdfMemory(*jaws.upper_U, kMapVoxelMm, 0);
+  return total;
+}
+
+namespace {
+
+// The files of a jaw for messages.
+std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw) {
+  if (!jaw) return config.file.string() + " [synthetic]";
+  std::vector<std::string> files;
+  for (const auto& f : jaw->files) files.push_back(f.string());
+  return JawFilesName(files);
+}
+
+}  // namespace
+
+CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : config_(config) {
+  StepClock clock;
+  clock.Start("loaded the meshes");
+  jaws_ = LoadCaseJaws(config_);
+  clock.Finish();
+  const std::string lower_name = JawName(config_, config_.lower),
+                    upper_name = JawName(config_, config_.upper);
+  for (const std::string& w : JawPairWarnings(
+           *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity(), lower_name, upper_name)) {
+    std::cerr << "occlude: warning: " << w << "\n";
+  }
+  CheckMemory(
+      {config_.file.string(),
+       "the contact oracles and the map fields",
+       "accuracy.voxel_mm",
+       5.0,
+       "decimate the meshes or raise accuracy.sample_spacing_mm",
+       {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
+      [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
+      config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
+  std::cerr << "occlude: " << config_.resolution.Describe() << "\n";
+  clock.Start("estimated the arch frame");
+  arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
+  pivot_L_ = config_.start.pivot_mm.value_or(UpperOcclusalCentre(*jaws_.upper_U, arch_.occlusal_L));
+}
+
+Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }
+
+std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
+    std::shared_ptr<const io::TriangleMesh> lower_L,
+    std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
+    const std::string& what) {
+  StepClock clock;
+  clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
+  try {
+    return std::make_unique<collision::JawOracle>(std::move(lower_L), std::move(upper_U), options);
+  } catch (const collision::VoxelizeError& e) {
+    throw UserError(config_.file.string() + ": accuracy: " + e.what());
+  }
+}
+
+collision::RegionOfInterestRequest CaseSession::RegionRequest(double band_mm) const {
+  const Eigen::Isometry3d X_start = ConfigStartPose();
+  return SessionRegionRequest(config_, X_start, X_start * pivot_L_, band_mm);
+}
+
+const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
+  const std::vector<double> voxels = ScheduleVoxels(config_);
+  if (oracles_.empty()) oracles_.resize(voxels.size());
+  if (!oracles_[index]) {
+    collision::OracleOptions base;
+    base.sample_spacing_mm = config_.sample_spacing_mm;
+    base.arch = arch_;
+    const collision::OracleOptions options = planner::StageOracleOptions(base, voxels, index);
+    OracleModel model{options.voxel_size_mm, std::nullopt, 0, 0.0};
+    if (!config_.region_of_interest) {
+      oracles_[index] = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, "");
+    } else {
+      const collision::RegionOfInterest roi = collision::ComputeRegionOfInterest(
+          jaws_.lower_L, jaws_.upper_U, RegionRequest(SessionReadRadiusMm(config_, options)));
+      // A jaw that keeps nearly everything is modelled whole (the cut would save little and
+      // cost a copy of the mesh), and so is one that keeps nothing (jaws out of each other's
+      // reach: an oracle needs a surface).
+      auto pick = [](const collision::RegionMesh& sub,
+                     const std::shared_ptr<const io::TriangleMesh>& whole) {
+        const auto kept = static_cast<double>(sub.mesh->num_triangles());
+        return sub.mesh->empty() ||
+                       kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles())
+                   ? whole
+                   : sub.mesh;
+      };
+      const auto lower = pick(roi.lower, jaws_.lower_L), upper = pick(roi.upper, jaws_.upper_U);
+      model.lower_cut = lower != jaws_.lower_L;
+      model.upper_cut = upper != jaws_.upper_U;
+      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats)
+                << (model.lower_cut || model.upper_cut
+                        ? ""
+                        : "; too little to cut: modelling the whole jaws")
+                << "\n";
+      oracles_[index] = BuildOracle(lower, upper, options, " on the region of interest");
+      model.region = roi.stats;
+      model.build_seconds = roi.stats.seconds;
+    }
+    model.bytes = oracles_[index]->MemoryBytes();
+    model.build_seconds += oracles_[index]->build_seconds();
+    models_.push_back(model);
+  }
+  return *oracles_[index];
+}
+
+const planner::OracleSchedule& CaseSession::Schedule() {
+  if (stages_.empty()) {
+    const std::size_t n = ScheduleVoxels(config_).size();
+    // Coarse stages at sub-voxel level; the finest at the level chosen for the accuracy.
+    for (std::size_t i = 0; i < n; ++i) {
+      stages_.push_back(
+          {&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
+    }
+  }
+  return stages_;
+}
+
+const collision::JawOracle& CaseSession::FinestOracle() {
+  const std::size_t last = ScheduleVoxels(config_).size() - 1;
+  if (!config_.region_of_interest) return Oracle(last);
+  if (!whole_finest_) {
+    collision::OracleOptions base;
+    base.sample_spacing_mm = config_.sample_spacing_mm;
+    base.arch = arch_;
+    const collision::OracleOptions options =
+        planner::StageOracleOptions(base, ScheduleVoxels(config_), last);
+    whole_finest_ = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, " on the whole jaws");
+    models_.push_back({options.voxel_size_mm, std::nullopt, whole_finest_->MemoryBytes(),
+                       whole_finest_->build_seconds()});
+  }
+  return *whole_finest_;
+}
+
+const collision::JawOracle& CaseSession::FinestOracleAt(const Eigen::Isometry3d& X_LU) {
+  if (!config_.region_of_interest || whole_finest_) return FinestOracle();
+  const double displacement = collision::MaxDisplacementMm(*jaws_.upper_U, RegionRequest(0.0));
+  if (collision::RegionCoversPose(*jaws_.upper_U, ConfigStartPose(), X_LU, displacement)) {
+    return Oracle(ScheduleVoxels(config_).size() - 1);
+  }
+  return FinestOracle();
+}
+
+const MapFields& CaseSession::Maps() {
+  if (!maps_) {
+    StepClock clock;
+    clock.Start("built the distance fields of the maps");
+    maps_ =
+        std::make_unique<MapFields>(MapFields{MapField(jaws_.lower_L), MapField(jaws_.upper_U)});
+  }
+  return *maps_;
+}
+
+namespace {
+
+// The inputs of a session's region of interest besides the models' (start pose, bounds, locks,
+// the bands: session_region.h).
+bool SameRegionInputs(const CaseConfig& a, const CaseConfig& b) {
+  for (std::size_t d = 0; d < kNumDofs; ++d) {
+    if (a.bounds[d].min != b.bounds[d].min || a.bounds[d].max != b.bounds[d].max) return false;
+  }
+  return a.locked == b.locked && a.start.matrix == b.start.matrix &&
+         a.start.params.translation_mm == b.start.params.translation_mm &&
+         a.start.params.rotation_deg == b.start.params.rotation_deg &&
+         a.contact_band_mm == b.contact_band_mm && a.max_penetration_mm == b.max_penetration_mm &&
+         a.report.map_max_mm == b.report.map_max_mm;
+}
+
+}  // namespace
+
+bool CaseSession::Reusable(const CaseConfig& other) const {
+  auto same_files = [](const std::optional<JawFiles>& a, const std::optional<JawFiles>& b) {
+    if (a.has_value() != b.has_value()) return false;
+    return !a || (a->files == b->files && a->parts == b->parts);
+  };
+  const bool same_synthetic =
+      config_.synthetic.has_value() == other.synthetic.has_value() &&
+      (!config_.synthetic || (config_.synthetic->triangles == other.synthetic->triangles &&
+                              config_.synthetic->seed == other.synthetic->seed));
+  return same_files(config_.lower, other.lower) && same_files(config_.upper, other.upper) &&
+         same_synthetic && config_.units == other.units && config_.up_axis_L == other.up_axis_L &&
+         ScheduleVoxels(config_) == ScheduleVoxels(other) &&
+         config_.sample_spacing_mm == other.sample_spacing_mm &&
+         config_.start.pivot_mm == other.start.pivot_mm &&
+         config_.region_of_interest == other.region_of_interest &&
+         (!config_.region_of_interest || oracles_.empty() || SameRegionInputs(config_, other));
+}
+
+}  // namespace occlude::app

@@ -1,0 +1,103 @@
+// A case as `propose`, `refine` and `report` work on it: the meshes, the arch frame, the
+// rotation pivot, the planner's oracle schedule, and the report's map fields, each built once
+// on first use and kept (so `refine --watch` pays for the trees only once). Building steps
+// that take over a second are reported on stderr.
+//
+// Frames: lower in L, upper in U as the case gives it (X_LU = identity is the pose as
+// scanned); the arch frame and the pivot are taken at that pose. Poses in the config and in
+// the outputs are about pivot_L (planner::ComposePose with the reference = identity).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "base/progress.h"
+#include "config/case_config.h"
+#include "occlude/collision/memory_estimate.h"
+#include "occlude/collision/signed_distance.h"
+#include "occlude/planner/request.h"
+#include "session/case_jaws.h"
+#include "session/session_region.h"
+
+namespace occlude::app {
+
+/// The voxel sizes of the planner's schedule for a config: coarse to fine, ending at the
+/// config's voxel size ({0.8, 0.4, v} for v < 0.4, else {max(0.8, 2 v), v}).
+std::vector<double> ScheduleVoxels(const CaseConfig& config);
+/// The same schedule ending at `finest_mm`.
+std::vector<double> ScheduleVoxels(double finest_mm);
+
+/// Estimated peak memory of what a session of `config` builds when its finest voxel size
+/// is `voxel_mm`: the oracles of the schedule ending there and the map fields.
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+                                                double voxel_mm);
+
+/// Exact distance fields of both meshes for the report's vertex maps.
+struct MapFields {
+  collision::NarrowBandSdf lower, upper;
+};
+
+class CaseSession {
+ public:
+  /// Loads the meshes of `config` (throws UserError naming the file), warns on stderr about
+  /// odd jaw pairs (far apart, identical, in metres), and checks the memory of everything
+  /// the session may build against the budget (memory_guard.h: `memory_budget_mb` > 0 is
+  /// the command's --memory-budget-mb, else the config's limits, else the default).
+  explicit CaseSession(const CaseConfig& config, double memory_budget_mb = 0);
+
+  const CaseConfig& config() const { return config_; }
+  const CaseJaws& jaws() const { return jaws_; }
+  const collision::ArchFrame& arch() const { return arch_; }
+  /// The rotation pivot in L (at identity U = L): the config's pivot_mm or the centre of the
+  /// upper arch's occlusal surface.
+  const Eigen::Vector3d& pivot_L() const { return pivot_L_; }
+  /// The start pose of the config about pivot_L().
+  Eigen::Isometry3d ConfigStartPose() const;
+
+  /// The planner's schedule (built on first use): ScheduleVoxels sub-voxel stages. With
+  /// [accuracy] region_of_interest (the default) each oracle models only the region of
+  /// interest of a search from ConfigStartPose() within the config's bounds, which answers as
+  /// the whole jaws do at every pose of that search (collision/region_of_interest.h).
+  const planner::OracleSchedule& Schedule();
+  /// The finest oracle on the whole jaws, valid at any pose (without region_of_interest, the
+  /// schedule's finest).
+  const collision::JawOracle& FinestOracle();
+  /// The finest oracle valid at X_LU: the whole-jaw one when already built, else the
+  /// schedule's finest when its region covers X_LU (every upper vertex within the region's
+  /// displacement of its place at the start pose), else FinestOracle().
+  const collision::JawOracle& FinestOracleAt(const Eigen::Isometry3d& X_LU);
+  /// The oracles built so far, in build order (for the report's settings).
+  const std::vector<OracleModel>& Models() const { return models_; }
+  const MapFields& Maps();
+
+  /// True when `other` can reuse this session's models (same meshes, units, up axis, voxel
+  /// sizes, sample spacing and pivot); otherwise a new session is needed.
+  bool Reusable(const CaseConfig& other) const;
+  /// Takes the non-model settings of `other` (band, limits, solver, bounds, start, adjust,
+  /// output, report) after Reusable(other).
+  void UpdateSettings(const CaseConfig& other) { config_ = other; }
+
+ private:
+  CaseConfig config_;
+  CaseJaws jaws_;
+  collision::ArchFrame arch_;
+  Eigen::Vector3d pivot_L_ = Eigen::Vector3d::Zero();
+  /// One oracle per schedule stage, built on demand (the report needs only the finest).
+  std::vector<std::unique_ptr<collision::JawOracle>> oracles_;
+  planner::OracleSchedule stages_;
+  const collision::JawOracle& Oracle(std::size_t index);
+  std::unique_ptr<MapFields> maps_;
+  // Region of interest (session_region.h): the whole-jaw finest oracle when asked for, and
+  // what every oracle built holds.
+  std::unique_ptr<collision::JawOracle> whole_finest_;
+  std::vector<OracleModel> models_;
+  std::unique_ptr<collision::JawOracle> BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
+                                                    std::shared_ptr<const io::TriangleMesh> upper_U,
+                                                    const collision::OracleOptions& options,
+                                                    const std::string& what);
+  collision::RegionOfInterestRequest RegionRequest(double band_mm) const;
+};
+
+}  // namespace occlude::app
