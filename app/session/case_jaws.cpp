@@ -57,19 +57,4 @@ collision::ArchFrame CaseArchFrame(const CaseConfig& config, const io::TriangleM
   return f;
 }
 
-Eigen::Vector3d UpperOcclusalCentre(const io::TriangleMesh& upper_U,
-                                    const Eigen::Vector3d& occlusal_U) {
-  if (upper_U.vertices.empty()) return Eigen::Vector3d::Zero();
-  std::vector<double> heights;
-  heights.reserve(upper_U.vertices.size());
-  for (const auto& v : upper_U.vertices) heights.push_back(v.dot(occlusal_U));
-  const std::size_t k = heights.size() / 20;
-  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k),
-                   heights.end());
-  const double level = heights[k];
-  const Eigen::AlignedBox3d box = upper_U.Bounds();
-  const Eigen::Vector3d c = box.center();
-  return c + (level - c.dot(occlusal_U)) * occlusal_U;
-}
-
 }  // namespace occlude::app

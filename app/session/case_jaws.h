@@ -35,10 +35,4 @@ CaseJaws LoadCaseJaws(const CaseConfig& config);
 collision::ArchFrame CaseArchFrame(const CaseConfig& config, const io::TriangleMesh& lower_L,
                                    const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU);
 
-/// Centre of the upper arch's occlusal surface, in U: the centre of the upper's
-/// extent across the arch plane, at the height (along `occlusal_U`) of its 5th
-/// lowest percentile of vertices (the cusp tips).
-Eigen::Vector3d UpperOcclusalCentre(const io::TriangleMesh& upper_U,
-                                    const Eigen::Vector3d& occlusal_U);
-
 }  // namespace occlude::app

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/user_error.h"
+#include "occlude/collision/arch_frame.h"
 #include "occlude/collision/region_of_interest.h"
 #include "occlude/collision/voxel_grid.h"
 #include "session/jaw_checks.h"
@@ -100,7 +101,8 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
   std::cerr << "occlude: " << config_.resolution.Describe() << "\n";
   clock.Start("estimated the arch frame");
   arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
-  pivot_L_ = config_.start.pivot_mm.value_or(UpperOcclusalCentre(*jaws_.upper_U, arch_.occlusal_L));
+  pivot_L_ = config_.start.pivot_mm.value_or(collision::UpperOcclusalCentre(
+      *jaws_.upper_U, Eigen::Isometry3d::Identity(), arch_.occlusal_L));
 }
 
 Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }

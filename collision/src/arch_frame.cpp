@@ -4,13 +4,15 @@
 // kInterfaceMm of an upper vertex, oriented lower -> upper; without enough
 // interface (jaws apart) the smallest principal axis of the lower jaw. The
 // lateral direction is the widest spread of the lower arch across that axis,
-// and anterior the direction in which the arch narrows (the incisors).
+// and anterior the direction in which the arch narrows (the incisors). The centre of the
+// upper occlusal surface (see arch_frame.h).
+#include "occlude/collision/arch_frame.h"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
-
-#include "occlude/collision/oracle.h"
+#include <vector>
 
 namespace occlude::collision {
 namespace {
@@ -120,6 +122,25 @@ ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleM
   f.lateral_L = f.occlusal_L.cross(f.anterior_L).normalized();
   f.anterior_split_mm = hi - 0.35 * (hi - lo);
   return f;
+}
+
+Eigen::Vector3d UpperOcclusalCentre(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU,
+                                    const Eigen::Vector3d& occlusal_L) {
+  if (upper_U.vertices.empty()) return Eigen::Vector3d::Zero();
+  std::vector<double> heights;
+  heights.reserve(upper_U.vertices.size());
+  Eigen::AlignedBox3d box;  // constructed empty
+  for (const auto& v : upper_U.vertices) {
+    const Eigen::Vector3d p_L = X_LU * v;
+    heights.push_back(p_L.dot(occlusal_L));
+    box.extend(p_L);
+  }
+  const std::size_t k = heights.size() / 20;
+  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(k),
+                   heights.end());
+  const double level = heights[k];
+  const Eigen::Vector3d c = box.center();
+  return c + (level - c.dot(occlusal_L)) * occlusal_L;
 }
 
 }  // namespace occlude::collision

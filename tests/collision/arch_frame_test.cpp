@@ -3,12 +3,15 @@
 // rotated axes, also when the occlusal plane is tilted far from the frame's
 // axes (intraoral scans come in arbitrary scanner frames), and the fallback
 // without an interface (jaws pulled apart) still finds the axis.
+#include "occlude/collision/arch_frame.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
-#include "occlude/collision/oracle.h"
 #include "occlude/io/synthetic_jaws.h"
+#include "test_common.h"
 
 namespace occlude::collision {
 namespace {
@@ -54,6 +57,39 @@ TEST(ArchFrame, WithoutInterfaceFallsBackToTheLowerJawShape) {
   const ArchFrame f = EstimateArchFrame(jaws.lower_L, jaws.upper_U.Transformed(apart));
   // The lower slab's thinnest direction: its height, +y (looser: the slab is not flat).
   EXPECT_LT(AngleDeg(f.occlusal_L, Eigen::Vector3d::UnitY()), 10.0);
+}
+
+// A box [0, 10] x [0, 4] x [0, 6] as the upper jaw: its eight corners put the 5th lowest
+// percentile at the lowest corner, so the centre is the centre of the face nearest the lower
+// jaw (along -occlusal).
+TEST(UpperOcclusalCentre, OfABoxIsTheCentreOfItsFaceTowardsTheLowerJaw) {
+  const io::TriangleMesh box = test::MakeBox(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 4, 6));
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  EXPECT_TRUE(UpperOcclusalCentre(box, I, Eigen::Vector3d::UnitY())
+                  .isApprox(Eigen::Vector3d(5, 0, 3), 1e-12));
+  EXPECT_TRUE(UpperOcclusalCentre(box, I, -Eigen::Vector3d::UnitY())
+                  .isApprox(Eigen::Vector3d(5, 4, 3), 1e-12));
+  EXPECT_TRUE(UpperOcclusalCentre(io::TriangleMesh{}, I, Eigen::Vector3d::UnitY()).isZero());
+}
+
+// The centre is taken on the upper placed by X_LU: the same point as on the moved mesh, and a
+// translation of the upper moves it by the translation.
+TEST(UpperOcclusalCentre, IsTakenOnTheUpperJawAtThePose) {
+  io::SyntheticJawOptions o;
+  o.triangles_per_jaw = 5000;
+  const io::SyntheticJawPair jaws = io::MakeSyntheticJawPair(o);
+  Eigen::Isometry3d X = jaws.X_LU;
+  X.prerotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  X.pretranslate(Eigen::Vector3d(4, -2, 7));
+  const Eigen::Vector3d occlusal_L = Eigen::Vector3d(0.1, 1, -0.2).normalized();
+  const Eigen::Vector3d at_pose = UpperOcclusalCentre(jaws.upper_U, X, occlusal_L);
+  const Eigen::Vector3d moved =
+      UpperOcclusalCentre(jaws.upper_U.Transformed(X), Eigen::Isometry3d::Identity(), occlusal_L);
+  EXPECT_LT((at_pose - moved).norm(), 1e-9);
+  const Eigen::Vector3d t(1.5, -0.5, 2.0);
+  const Eigen::Vector3d shifted =
+      UpperOcclusalCentre(jaws.upper_U, Eigen::Translation3d(t) * X, occlusal_L);
+  EXPECT_LT((shifted - (at_pose + t)).norm(), 1e-9);
 }
 
 }  // namespace

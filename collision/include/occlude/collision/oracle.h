@@ -21,6 +21,7 @@
 #include <optional>
 #include <vector>
 
+#include "occlude/collision/arch_frame.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/collision/sphere_tree.h"
@@ -33,26 +34,6 @@ enum class AccuracyLevel {
   kExact,     ///< every sample, exact closest lower triangle with pseudo-normal sign
 };
 const char* ToString(AccuracyLevel level);
-
-/// Anatomical directions of the lower arch in L (for left/right and
-/// anterior/posterior shares). lateral = occlusal x anterior points to the
-/// patient's left.
-struct ArchFrame {
-  Eigen::Vector3d origin_L = Eigen::Vector3d::Zero();
-  Eigen::Vector3d occlusal_L = Eigen::Vector3d::UnitY();  ///< lower -> upper
-  Eigen::Vector3d anterior_L = Eigen::Vector3d::UnitZ();  ///< towards the incisors
-  Eigen::Vector3d lateral_L = Eigen::Vector3d::UnitX();   ///< patient's left
-  double anterior_split_mm = 0.0;  ///< (p - origin).anterior above this = anterior region
-};
-
-/// Estimates the arch frame from the two jaws in a common frame (the bite as
-/// given): occlusal = normal of the plane fitted through the interface (lower
-/// vertices within 1.5 mm of an upper vertex; with fewer than 30 of them, the
-/// lower jaw's smallest principal axis), oriented lower -> upper; lateral = the widest
-/// horizontal direction of the lower arch; anterior = the horizontal direction
-/// where the arch narrows (incisors); the anterior region is the front 35 % of
-/// the arch depth.
-ArchFrame EstimateArchFrame(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_L);
 
 struct OracleOptions {
   double voxel_size_mm = 0.2;  ///< voxel size of both trees and the lower's distance field
