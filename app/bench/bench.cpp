@@ -67,170 +67,218 @@ collision::OracleOptions OracleOptionsFor(double voxel_mm) {
 
 namespace {
 
+// FCL's median per query and offset ("obb:boolean", offset) -> us: the reference of the IST
+// speedups.
+using FclMedians = std::map<std::pair<std::string, double>, double>;
+
+// The poses of one round and how many of them the slower queries time.
+struct RoundPoses {
+  std::vector<std::vector<Eigen::Isometry3d>> at;  ///< per offset
+  std::size_t slow_reps = 0, slowest_reps = 0;
+};
+
+void SetSpeedup(BenchRow* row, const std::string& reference, const FclMedians& fcl_median) {
+  const auto it = fcl_median.find({reference, row->offset_mm});
+  if (it == fcl_median.end()) return;
+  row->fcl_reference = reference;
+  if (row->us.median > 0) row->speedup = it->second / row->us.median;
+}
+
+// FCL's boolean, all-contacts and (OBBRSS) distance queries at one offset.
+void AddFclOffsetRows(const FclPeer& peer, FclBv bv, const std::string& variant, double offset,
+                      const std::vector<Eigen::Isometry3d>& at, std::size_t slow_reps,
+                      std::vector<BenchRow>* rows, FclMedians* fcl_median) {
+  auto add = [&](const std::string& query, std::size_t reps, auto&& fn) {
+    BenchRow row = MakeRow("fcl", variant, "");
+    row.query = query;
+    row.offset_mm = offset;
+    row.reps = static_cast<int>(std::min(reps, at.size()));
+    fn(&row);
+    (*fcl_median)[{variant + ":" + query, offset}] = row.us.median;
+    rows->push_back(row);
+  };
+  add("boolean", at.size(), [&](BenchRow* row) {
+    bool hit = false;
+    row->us = TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) { hit = peer.Collide(X); });
+    row->pairs = peer.Collide(at[0]) ? 1 : 0;
+    (void)hit;
+  });
+  add("collide-all", slow_reps, [&](BenchRow* row) {
+    row->us =
+        TimePoses(at, slow_reps, [&](const Eigen::Isometry3d& X) { (void)peer.CollideAll(X); });
+    row->pairs = peer.CollideAll(at[0]);
+  });
+  if (bv == FclBv::kOBBRSS) {
+    add("distance", slow_reps, [&](BenchRow* row) {
+      row->us =
+          TimePoses(at, slow_reps, [&](const Eigen::Isometry3d& X) { (void)peer.Distance(X); });
+      row->min_distance_mm = peer.Distance(at[0]).distance_mm;
+    });
+  }
+}
+
+// FCL's rows of one bounding-volume type: its build, then every offset.
+void AddFclRows(const BenchCase& bc, FclBv bv, const BenchOptions& options, const RoundPoses& poses,
+                std::vector<BenchRow>* rows, FclMedians* fcl_median) {
+  const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
+  Log(options, "FCL " + variant + ": building");
+  const FclPeer peer(*bc.lower_L, *bc.upper_U, bv);
+  BenchRow build = MakeRow("fcl", variant, "trees");
+  build.query = "build";
+  build.reps = 1;
+  build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
+  build.bytes = peer.approx_bytes();
+  rows->push_back(build);
+  for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
+    AddFclOffsetRows(peer, bv, variant, options.offsets_mm[k], poses.at[k], poses.slow_reps, rows,
+                     fcl_median);
+  }
+  Log(options, "FCL " + variant + ": done");
+}
+
+BenchRow BuildRow(const std::string& variant, const std::string& structure, double voxel,
+                  double seconds, std::size_t bytes) {
+  BenchRow build = MakeRow("ist", variant, structure);
+  build.voxel_mm = voxel;
+  build.query = "build";
+  build.reps = 1;
+  build.us = {1e6 * seconds, 1e6 * seconds};
+  build.bytes = bytes;
+  return build;
+}
+
+// The build rows of one voxel size: the trees per sphere mode (simple and optimized spheres
+// need only the voxels and the octree; the explicit, saved tree adds its precomputed spheres
+// and slabs) and the oracle.
+void AddIstBuildRows(double voxel, const collision::JawOracle& oracle, double oracle_seconds,
+                     std::vector<BenchRow>* rows) {
+  const auto& ls = oracle.lower_tree().stats();
+  const auto& us = oracle.upper_tree().stats();
+  const double implicit_s =
+      ls.seconds_voxelize + ls.seconds_octree + us.seconds_voxelize + us.seconds_octree;
+  const std::size_t implicit_bytes =
+      ls.total_bytes() - ls.bytes_explicit + us.total_bytes() - us.bytes_explicit;
+  for (const SphereMode mode : kSphereModes) {
+    const bool saved = mode == SphereMode::kExplicit;
+    rows->push_back(BuildRow(collision::ToString(mode), "trees", voxel,
+                             saved ? ls.total_seconds() + us.total_seconds() : implicit_s,
+                             saved ? ls.total_bytes() + us.total_bytes() : implicit_bytes));
+  }
+  rows->push_back(BuildRow("explicit", "oracle", voxel, oracle_seconds, oracle.MemoryBytes()));
+}
+
+BenchRow IstRow(const std::string& variant, const std::string& query, double voxel, double offset) {
+  BenchRow row = MakeRow("ist", variant, "");
+  row.voxel_mm = voxel;
+  row.query = query;
+  row.offset_mm = offset;
+  return row;
+}
+
+// The sphere-tree queries at one offset: boolean (first overlap) and all voxel pairs within
+// the band, per sphere mode.
+void AddTreeQueryRows(const collision::JawOracle& oracle, double voxel, double offset,
+                      const std::vector<Eigen::Isometry3d>& at, const BenchOptions& options,
+                      const RoundPoses& poses, const FclMedians& fcl_median,
+                      std::vector<BenchRow>* rows) {
+  const collision::SphereTree& lower = oracle.lower_tree();
+  const collision::SphereTree& upper = oracle.upper_tree();
+  collision::CollisionResult res;
+  for (const SphereMode mode : kSphereModes) {
+    collision::CollisionRequest req;
+    req.spheres = mode;
+    req.first_only = true;
+    BenchRow row = IstRow(collision::ToString(mode), "boolean", voxel, offset);
+    row.reps = static_cast<int>(at.size());
+    row.us = TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) {
+      collision::Collide(lower, upper, X, req, &res);
+    });
+    collision::Collide(lower, upper, at[0], req, &res);
+    row.pairs = res.overlap ? 1 : 0;
+    SetSpeedup(&row, "obb:boolean", fcl_median);
+    rows->push_back(row);
+  }
+  for (const SphereMode mode : kSphereModes) {
+    collision::CollisionRequest req;
+    req.spheres = mode;
+    req.delta_mm = options.delta_mm;
+    BenchRow row = IstRow(collision::ToString(mode), "pairs", voxel, offset);
+    row.reps = static_cast<int>(std::min(poses.slow_reps, at.size()));
+    row.us = TimePoses(at, poses.slow_reps, [&](const Eigen::Isometry3d& X) {
+      collision::Collide(lower, upper, X, req, &res);
+    });
+    collision::Collide(lower, upper, at[0], req, &res);
+    row.pairs = res.pairs.size();
+    SetSpeedup(&row, "obb:collide-all", fcl_median);
+    rows->push_back(row);
+  }
+}
+
+// The contact oracle at one offset, at each accuracy level.
+void AddOracleRows(const collision::JawOracle& oracle, double voxel, double offset,
+                   const std::vector<Eigen::Isometry3d>& at, const BenchOptions& options,
+                   const RoundPoses& poses, const FclMedians& fcl_median,
+                   std::vector<BenchRow>* rows) {
+  const std::pair<collision::AccuracyLevel, const char*> levels[] = {
+      {collision::AccuracyLevel::kVoxel, "oracle-voxel"},
+      {collision::AccuracyLevel::kSubVoxel, "oracle-subvoxel"},
+      {collision::AccuracyLevel::kExact, "oracle-exact"}};
+  for (const auto& [level, name] : levels) {
+    collision::OracleRequest req;
+    req.level = level;
+    req.contact_band_mm = options.delta_mm;
+    collision::OracleResult result;
+    const std::size_t reps =
+        level == collision::AccuracyLevel::kExact ? poses.slowest_reps : at.size();
+    BenchRow row = IstRow("explicit", name, voxel, offset);
+    row.reps = static_cast<int>(std::min(reps, at.size()));
+    row.us =
+        TimePoses(at, reps, [&](const Eigen::Isometry3d& X) { oracle.Query(X, req, &result); });
+    oracle.Query(at[0], req, &result);
+    row.pairs = result.contact_samples;
+    row.min_distance_mm = result.min_distance_mm;
+    row.max_penetration_mm = result.max_penetration_mm;
+    SetSpeedup(&row, "obbrss:collide-all", fcl_median);
+    rows->push_back(row);
+  }
+}
+
+// Every IST row of one voxel size: the oracle (and its trees) built once, then every offset.
+void AddIstRows(const BenchCase& bc, double voxel, const BenchOptions& options,
+                const RoundPoses& poses, const FclMedians& fcl_median,
+                std::vector<BenchRow>* rows) {
+  Log(options, "IST " + Fixed(voxel, 2) + " mm: building the trees and the oracle");
+  const double t0 = NowSeconds();
+  const collision::JawOracle oracle(bc.lower_L, bc.upper_U, OracleOptionsFor(voxel));
+  const double oracle_seconds = NowSeconds() - t0;
+  AddIstBuildRows(voxel, oracle, oracle_seconds, rows);
+  Log(options, "IST " + Fixed(voxel, 2) + " mm: built in " + Fixed(oracle_seconds, 2) + " s (" +
+                   std::to_string(oracle.MemoryBytes() >> 20) + " MB); timing the sweep");
+  for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
+    const double offset = options.offsets_mm[k];
+    AddTreeQueryRows(oracle, voxel, offset, poses.at[k], options, poses, fcl_median, rows);
+    AddOracleRows(oracle, voxel, offset, poses.at[k], options, poses, fcl_median, rows);
+  }
+  Log(options, "IST " + Fixed(voxel, 2) + " mm: done");
+}
+
+// One whole sweep: FCL first (its rows are the reference of the IST speedups), then IST per
+// voxel size.
 std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& options) {
   std::vector<BenchRow> rows;
-  const std::vector<std::vector<Eigen::Isometry3d>> poses = SweepPoses(
-      bc, options.offsets_mm, options.reps, options.jitter_deg, options.jitter_mm, options.seed);
-  const auto slow_reps = static_cast<std::size_t>(std::max(3, options.reps / 3));
-  const auto slowest_reps = static_cast<std::size_t>(std::max(2, options.reps / 5));
-
-  // FCL first: its rows are the reference of the IST speedups.
-  std::map<std::pair<std::string, double>, double> fcl_median;  // ("obb:boolean", offset) -> us
+  RoundPoses poses;
+  poses.at = SweepPoses(bc, options.offsets_mm, options.reps, options.jitter_deg, options.jitter_mm,
+                        options.seed);
+  poses.slow_reps = static_cast<std::size_t>(std::max(3, options.reps / 3));
+  poses.slowest_reps = static_cast<std::size_t>(std::max(2, options.reps / 5));
+  FclMedians fcl_median;
   if (options.fcl && FclPeer::Available()) {
     for (const FclBv bv : {FclBv::kOBB, FclBv::kOBBRSS}) {
-      const std::string variant = bv == FclBv::kOBB ? "obb" : "obbrss";
-      Log(options, "FCL " + variant + ": building");
-      const FclPeer peer(*bc.lower_L, *bc.upper_U, bv);
-      BenchRow build = MakeRow("fcl", variant, "trees");
-      build.query = "build";
-      build.reps = 1;
-      build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
-      build.bytes = peer.approx_bytes();
-      rows.push_back(build);
-      for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
-        const auto& at = poses[k];
-        const double offset = options.offsets_mm[k];
-        auto add = [&](const std::string& query, std::size_t reps, auto&& fn) {
-          BenchRow row = MakeRow("fcl", variant, "");
-          row.query = query;
-          row.offset_mm = offset;
-          row.reps = static_cast<int>(std::min(reps, at.size()));
-          fn(&row);
-          fcl_median[{variant + ":" + query, offset}] = row.us.median;
-          rows.push_back(row);
-        };
-        add("boolean", at.size(), [&](BenchRow* row) {
-          bool hit = false;
-          row->us =
-              TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) { hit = peer.Collide(X); });
-          row->pairs = peer.Collide(at[0]) ? 1 : 0;
-          (void)hit;
-        });
-        add("collide-all", slow_reps, [&](BenchRow* row) {
-          row->us = TimePoses(at, slow_reps,
-                              [&](const Eigen::Isometry3d& X) { (void)peer.CollideAll(X); });
-          row->pairs = peer.CollideAll(at[0]);
-        });
-        if (bv == FclBv::kOBBRSS) {
-          add("distance", slow_reps, [&](BenchRow* row) {
-            row->us = TimePoses(at, slow_reps,
-                                [&](const Eigen::Isometry3d& X) { (void)peer.Distance(X); });
-            row->min_distance_mm = peer.Distance(at[0]).distance_mm;
-          });
-        }
-      }
-      Log(options, "FCL " + variant + ": done");
+      AddFclRows(bc, bv, options, poses, &rows, &fcl_median);
     }
   }
-  auto speedup = [&](BenchRow* row, const std::string& reference) {
-    const auto it = fcl_median.find({reference, row->offset_mm});
-    if (it == fcl_median.end()) return;
-    row->fcl_reference = reference;
-    if (row->us.median > 0) row->speedup = it->second / row->us.median;
-  };
-
   for (const double voxel : options.voxels_mm) {
-    Log(options, "IST " + Fixed(voxel, 2) + " mm: building the trees and the oracle");
-    const double t0 = NowSeconds();
-    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, OracleOptionsFor(voxel));
-    const double oracle_seconds = NowSeconds() - t0;
-    const collision::SphereTree& lower = oracle.lower_tree();
-    const collision::SphereTree& upper = oracle.upper_tree();
-    {
-      // Simple and optimized spheres need only the voxels and the octree; the
-      // explicit (saved) tree adds its precomputed spheres and slabs.
-      const auto& ls = lower.stats();
-      const auto& us = upper.stats();
-      const double implicit_s =
-          ls.seconds_voxelize + ls.seconds_octree + us.seconds_voxelize + us.seconds_octree;
-      const std::size_t implicit_bytes =
-          ls.total_bytes() - ls.bytes_explicit + us.total_bytes() - us.bytes_explicit;
-      for (const SphereMode mode : kSphereModes) {
-        BenchRow build = MakeRow("ist", collision::ToString(mode), "trees");
-        build.voxel_mm = voxel;
-        build.query = "build";
-        build.reps = 1;
-        const double s =
-            mode == SphereMode::kExplicit ? ls.total_seconds() + us.total_seconds() : implicit_s;
-        build.us = {1e6 * s, 1e6 * s};
-        build.bytes =
-            mode == SphereMode::kExplicit ? ls.total_bytes() + us.total_bytes() : implicit_bytes;
-        rows.push_back(build);
-      }
-      BenchRow build = MakeRow("ist", "explicit", "oracle");
-      build.voxel_mm = voxel;
-      build.query = "build";
-      build.reps = 1;
-      build.us = {1e6 * oracle_seconds, 1e6 * oracle_seconds};
-      build.bytes = oracle.MemoryBytes();
-      rows.push_back(build);
-    }
-    Log(options, "IST " + Fixed(voxel, 2) + " mm: built in " + Fixed(oracle_seconds, 2) + " s (" +
-                     std::to_string(oracle.MemoryBytes() >> 20) + " MB); timing the sweep");
-
-    for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
-      const auto& at = poses[k];
-      const double offset = options.offsets_mm[k];
-      auto base = [&](const std::string& variant, const std::string& query) {
-        BenchRow row = MakeRow("ist", variant, "");
-        row.voxel_mm = voxel;
-        row.query = query;
-        row.offset_mm = offset;
-        return row;
-      };
-      collision::CollisionResult res;
-      for (const SphereMode mode : kSphereModes) {
-        collision::CollisionRequest req;
-        req.spheres = mode;
-        req.first_only = true;
-        BenchRow row = base(collision::ToString(mode), "boolean");
-        row.reps = static_cast<int>(at.size());
-        row.us = TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) {
-          collision::Collide(lower, upper, X, req, &res);
-        });
-        collision::Collide(lower, upper, at[0], req, &res);
-        row.pairs = res.overlap ? 1 : 0;
-        speedup(&row, "obb:boolean");
-        rows.push_back(row);
-      }
-      for (const SphereMode mode : kSphereModes) {
-        collision::CollisionRequest req;
-        req.spheres = mode;
-        req.delta_mm = options.delta_mm;
-        BenchRow row = base(collision::ToString(mode), "pairs");
-        row.reps = static_cast<int>(std::min(slow_reps, at.size()));
-        row.us = TimePoses(at, slow_reps, [&](const Eigen::Isometry3d& X) {
-          collision::Collide(lower, upper, X, req, &res);
-        });
-        collision::Collide(lower, upper, at[0], req, &res);
-        row.pairs = res.pairs.size();
-        speedup(&row, "obb:collide-all");
-        rows.push_back(row);
-      }
-      const std::pair<collision::AccuracyLevel, const char*> levels[] = {
-          {collision::AccuracyLevel::kVoxel, "oracle-voxel"},
-          {collision::AccuracyLevel::kSubVoxel, "oracle-subvoxel"},
-          {collision::AccuracyLevel::kExact, "oracle-exact"}};
-      for (const auto& [level, name] : levels) {
-        collision::OracleRequest req;
-        req.level = level;
-        req.contact_band_mm = options.delta_mm;
-        collision::OracleResult result;
-        const std::size_t reps =
-            level == collision::AccuracyLevel::kExact ? slowest_reps : at.size();
-        BenchRow row = base("explicit", name);
-        row.reps = static_cast<int>(std::min(reps, at.size()));
-        row.us =
-            TimePoses(at, reps, [&](const Eigen::Isometry3d& X) { oracle.Query(X, req, &result); });
-        oracle.Query(at[0], req, &result);
-        row.pairs = result.contact_samples;
-        row.min_distance_mm = result.min_distance_mm;
-        row.max_penetration_mm = result.max_penetration_mm;
-        speedup(&row, "obbrss:collide-all");
-        rows.push_back(row);
-      }
-    }
-    Log(options, "IST " + Fixed(voxel, 2) + " mm: done");
+    AddIstRows(bc, voxel, options, poses, fcl_median, &rows);
   }
   return rows;
 }
@@ -314,21 +362,28 @@ ChartSeries RateSeries(const std::vector<BenchRow>& rows, const std::vector<doub
   return s;
 }
 
-}  // namespace
-
-std::vector<std::pair<std::string, std::string>> BenchCharts(const std::vector<BenchRow>& rows,
-                                                             const std::string& subtitle) {
+// What the rate charts share: the offsets in sweep order (the categorical x axis), the voxel
+// sizes, the rows and the subtitle; every chart drawn goes to `files`.
+struct RateCharts {
+  const std::vector<BenchRow>& rows;
+  std::string subtitle;
   std::vector<double> offsets;
   std::set<double> voxels;
-  for (const BenchRow& r : rows) {
-    if (r.query == "build") continue;
-    if (std::find(offsets.begin(), offsets.end(), r.offset_mm) == offsets.end())
-      offsets.push_back(r.offset_mm);
-    if (std::isfinite(r.voxel_mm)) voxels.insert(r.voxel_mm);
-  }
   std::vector<std::string> labels;
-  for (const double o : offsets) labels.push_back(OffsetLabel(o));
-  auto chart = [&](const std::string& title) {
+  std::vector<std::pair<std::string, std::string>> files;
+
+  RateCharts(const std::vector<BenchRow>& bench_rows, std::string chart_subtitle)
+      : rows(bench_rows), subtitle(std::move(chart_subtitle)) {
+    for (const BenchRow& r : rows) {
+      if (r.query == "build") continue;
+      if (std::find(offsets.begin(), offsets.end(), r.offset_mm) == offsets.end())
+        offsets.push_back(r.offset_mm);
+      if (std::isfinite(r.voxel_mm)) voxels.insert(r.voxel_mm);
+    }
+    for (const double o : offsets) labels.push_back(OffsetLabel(o));
+  }
+
+  LineChart Chart(const std::string& title) const {
     LineChart c;
     c.title = title;
     c.subtitle = subtitle;
@@ -339,83 +394,101 @@ std::vector<std::pair<std::string, std::string>> BenchCharts(const std::vector<B
     c.x_categories = labels;
     c.references = {{1000.0, "1 kHz (haptic)"}};
     return c;
-  };
-  auto fcl = [&](const std::string& variant, const std::string& query, int color) {
-    return RateSeries(rows, offsets, "FCL " + variant + " " + query, true, color,
-                      [&](const BenchRow& r) {
-                        return r.method == "fcl" && r.variant == variant && r.query == query;
-                      });
-  };
-  auto add_fcl = [&](LineChart* c,
-                     std::initializer_list<std::pair<const char*, const char*>> which) {
+  }
+
+  // The FCL series (dashed, colours from 5 on) that have points.
+  void AddFcl(LineChart* c,
+              std::initializer_list<std::pair<const char*, const char*>> which) const {
     int color = 5;
-    for (const auto& [variant, query] : which) {
-      ChartSeries s = fcl(variant, query, color++);
+    for (const auto& which_one : which) {
+      const std::string variant = which_one.first, query = which_one.second;
+      ChartSeries s = RateSeries(
+          rows, offsets, "FCL " + variant + " " + query, true, color++, [&](const BenchRow& r) {
+            return r.method == "fcl" && r.variant == variant && r.query == query;
+          });
       if (!s.x.empty()) c->series.push_back(s);
     }
-  };
-  std::vector<std::pair<std::string, std::string>> files;
-  auto emit = [&](const std::string& file, const LineChart& c) {
+  }
+
+  // Renders the chart when any series has a point.
+  void Emit(const std::string& file, const LineChart& c) {
     bool any = false;
     for (const auto& s : c.series) any = any || !s.x.empty();
     if (any) files.emplace_back(file, RenderLineChartPng(c));
-  };
-  for (const double v : voxels) {
-    const std::string vs = Fixed(v, v < 0.1 ? 3 : (v < 1 ? 1 : 0));
-    const std::string tag = Fixed(v, 2) + "mm";
-    for (const char* query : {"boolean", "pairs"}) {
-      LineChart c =
-          chart(std::string(query == std::string("boolean") ? "Boolean collision query"
-                                                            : "All voxel pairs within the band") +
-                ", IST at " + vs + " mm voxels, against FCL");
-      int color = 0;
-      for (const char* variant : {"simple", "optimized", "explicit"}) {
-        c.series.push_back(RateSeries(rows, offsets, std::string("IST ") + variant, false, color++,
-                                      [&](const BenchRow& r) {
-                                        return r.method == "ist" && r.variant == variant &&
-                                               r.query == query && r.voxel_mm == v;
-                                      }));
-      }
-      if (query == std::string("boolean")) {
-        add_fcl(&c, {{"obb", "boolean"}, {"obbrss", "boolean"}});
-      } else {
-        add_fcl(&c, {{"obb", "collide-all"}, {"obbrss", "collide-all"}});
-      }
-      emit(std::string(query) + "-" + tag + ".png", c);
-    }
-    LineChart c =
-        chart("Contact oracle at " + vs + " mm voxels (contacts within the band + penetration)");
-    int color = 0;
-    for (const char* query : {"oracle-voxel", "oracle-subvoxel", "oracle-exact"}) {
-      c.series.push_back(RateSeries(
-          rows, offsets, std::string("IST ") + query, false, color++, [&](const BenchRow& r) {
-            return r.method == "ist" && r.query == query && r.voxel_mm == v;
-          }));
-    }
-    add_fcl(&c, {{"obbrss", "collide-all"}, {"obbrss", "distance"}});
-    emit("oracle-" + tag + ".png", c);
   }
-  // Across voxel sizes: explicit boolean and sub-voxel oracle.
-  for (const char* query : {"boolean", "oracle-subvoxel"}) {
-    LineChart c = chart(std::string(query == std::string("boolean") ? "Boolean query (explicit IST)"
-                                                                    : "Sub-voxel oracle") +
-                        " by voxel size, against FCL");
+};
+
+// At one voxel size: the boolean and the pairs query per sphere mode, and the oracle per
+// level, each against the matching FCL queries.
+void AddVoxelCharts(double v, RateCharts* charts) {
+  const std::vector<BenchRow>& rows = charts->rows;
+  const std::string vs = Fixed(v, v < 0.1 ? 3 : (v < 1 ? 1 : 0));
+  const std::string tag = Fixed(v, 2) + "mm";
+  for (const char* query : {"boolean", "pairs"}) {
+    const bool boolean = query == std::string("boolean");
+    LineChart c = charts->Chart(
+        std::string(boolean ? "Boolean collision query" : "All voxel pairs within the band") +
+        ", IST at " + vs + " mm voxels, against FCL");
     int color = 0;
-    for (const double v : voxels) {
-      c.series.push_back(RateSeries(rows, offsets, "IST " + Fixed(v, 2) + " mm", false, color++,
-                                    [&](const BenchRow& r) {
+    for (const char* variant : {"simple", "optimized", "explicit"}) {
+      c.series.push_back(RateSeries(rows, charts->offsets, std::string("IST ") + variant, false,
+                                    color++, [&](const BenchRow& r) {
+                                      return r.method == "ist" && r.variant == variant &&
+                                             r.query == query && r.voxel_mm == v;
+                                    }));
+    }
+    if (boolean) {
+      charts->AddFcl(&c, {{"obb", "boolean"}, {"obbrss", "boolean"}});
+    } else {
+      charts->AddFcl(&c, {{"obb", "collide-all"}, {"obbrss", "collide-all"}});
+    }
+    charts->Emit(std::string(query) + "-" + tag + ".png", c);
+  }
+  LineChart c = charts->Chart("Contact oracle at " + vs +
+                              " mm voxels (contacts within the band + penetration)");
+  int color = 0;
+  for (const char* query : {"oracle-voxel", "oracle-subvoxel", "oracle-exact"}) {
+    c.series.push_back(RateSeries(rows, charts->offsets, std::string("IST ") + query, false,
+                                  color++, [&](const BenchRow& r) {
+                                    return r.method == "ist" && r.query == query && r.voxel_mm == v;
+                                  }));
+  }
+  charts->AddFcl(&c, {{"obbrss", "collide-all"}, {"obbrss", "distance"}});
+  charts->Emit("oracle-" + tag + ".png", c);
+}
+
+// Across voxel sizes: the explicit boolean query and the sub-voxel oracle.
+void AddByVoxelCharts(RateCharts* charts) {
+  for (const char* query : {"boolean", "oracle-subvoxel"}) {
+    const bool boolean = query == std::string("boolean");
+    LineChart c =
+        charts->Chart(std::string(boolean ? "Boolean query (explicit IST)" : "Sub-voxel oracle") +
+                      " by voxel size, against FCL");
+    int color = 0;
+    for (const double v : charts->voxels) {
+      c.series.push_back(RateSeries(charts->rows, charts->offsets, "IST " + Fixed(v, 2) + " mm",
+                                    false, color++, [&](const BenchRow& r) {
                                       return r.method == "ist" && r.variant == "explicit" &&
                                              r.query == query && r.voxel_mm == v;
                                     }));
     }
-    if (query == std::string("boolean")) {
-      add_fcl(&c, {{"obb", "boolean"}});
+    if (boolean) {
+      charts->AddFcl(&c, {{"obb", "boolean"}});
     } else {
-      add_fcl(&c, {{"obbrss", "collide-all"}});
+      charts->AddFcl(&c, {{"obbrss", "collide-all"}});
     }
-    emit(std::string(query) + "-by-voxel.png", c);
+    charts->Emit(std::string(query) + "-by-voxel.png", c);
   }
-  return files;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> BenchCharts(const std::vector<BenchRow>& rows,
+                                                             const std::string& subtitle) {
+  RateCharts charts(rows, subtitle);
+  for (const double v : charts.voxels) AddVoxelCharts(v, &charts);
+  AddByVoxelCharts(&charts);
+  return std::move(charts.files);
 }
 
 std::string BenchSummary(const std::vector<BenchRow>& rows) {

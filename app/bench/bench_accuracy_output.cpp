@@ -136,85 +136,101 @@ std::string AccuracyTableJson(const std::vector<AccuracyRow>& rows, const std::s
   return j.dump(2) + "\n";
 }
 
+namespace {
+
+// A method's series on the accuracy charts: its name, colour and line style.
+std::string SeriesName(const AccuracyRow& r) {
+  if (r.method == "fcl") return "FCL " + r.query + (r.query == "distance" ? " (OBBRSS)" : "");
+  if (r.query == "oracle") return "IST oracle, " + r.level + " level";
+  return "IST pairs " + r.variant + (r.level == "exact" ? " + exact" : ", voxel");
+}
+
+ChartSeries NewSeries(const AccuracyRow& r) {
+  ChartSeries s;
+  s.name = SeriesName(r);
+  if (r.method == "fcl") {
+    s.color = r.query == "distance" ? 8 : 6;
+    s.markers_only = true;
+  } else if (r.query == "oracle") {
+    s.color = r.level == "voxel" ? 0 : (r.level == "subvoxel" ? 1 : 2);
+  } else {
+    s.color = r.variant == "simple" ? 3 : (r.variant == "optimized" ? 4 : 5);
+    s.dashed = r.level == "exact";
+  }
+  return s;
+}
+
+// Voxel sizes beside the oracle's and the explicit pairs' points (the other sphere modes have
+// the same errors: their labels would overlap); FCL's points carry their variant.
+std::string PointLabel(const AccuracyRow& r) {
+  if (r.method == "fcl") return r.query == "distance" ? "" : r.variant;
+  if (r.query == "oracle" || r.variant == "explicit") return VoxelLabel(r.voxel_mm);
+  return "";
+}
+
+// The Pareto front of the p95 chart, by time.
+ChartSeries ParetoSeries(const std::vector<AccuracyRow>& rows) {
+  std::vector<const AccuracyRow*> front;
+  for (const AccuracyRow& r : rows) {
+    if (r.pareto) front.push_back(&r);
+  }
+  std::sort(front.begin(), front.end(),
+            [](const AccuracyRow* a, const AccuracyRow* b) { return a->us.median < b->us.median; });
+  ChartSeries s;
+  s.name = "Pareto front (missing <= 1%)";
+  s.color = 7;
+  s.dashed = true;
+  for (const AccuracyRow* r : front) {
+    s.x.push_back(r->us.median);
+    s.y.push_back(std::max(r->p95_err_mm, kErrorFloorMm));
+  }
+  return s;
+}
+
+// Median time against the p95 (or max) error, one series per method; no series: no chart.
+LineChart ErrorChart(const std::vector<AccuracyRow>& rows, bool p95, const std::string& subtitle) {
+  LineChart c;
+  c.title = std::string("Speed against accuracy: ") + (p95 ? "95th percentile" : "maximum") +
+            " contact-distance error against query time";
+  c.subtitle = subtitle;
+  c.x_label = "median query time, us (thread CPU, log)";
+  c.y_label = std::string(p95 ? "p95" : "max") + " error of claimed distances, mm (log)";
+  c.log_x = c.log_y = true;
+  std::map<std::string, std::size_t> index;
+  for (const AccuracyRow& r : rows) {
+    const double err = p95 ? r.p95_err_mm : r.max_err_mm;
+    if (!std::isfinite(err) || !(r.us.median > 0)) continue;
+    const std::string key = SeriesName(r);
+    if (!index.count(key)) {
+      index[key] = c.series.size();
+      c.series.push_back(NewSeries(r));
+    }
+    ChartSeries& s = c.series[index[key]];
+    s.x.push_back(r.us.median);
+    s.y.push_back(std::max(err, kErrorFloorMm));
+    s.labels.push_back(PointLabel(r));
+  }
+  if (c.series.empty()) return c;
+  if (p95) {
+    ChartSeries front = ParetoSeries(rows);
+    if (!front.x.empty()) c.series.push_back(front);
+  }
+  // The second, unlabelled line only extends the axis a decade below the
+  // floor, so points on the floor stay off the frame.
+  c.references = {{kErrorFloorMm, "error < 1e-5 mm"}, {0.1 * kErrorFloorMm, ""}};
+  c.width = 1300;
+  c.height = 800;
+  return c;
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> AccuracyCharts(
     const std::vector<AccuracyRow>& rows, const std::string& subtitle) {
-  struct Style {
-    int color;
-    bool dashed, markers;
-  };
-  auto style = [](const AccuracyRow& r) -> Style {
-    if (r.method == "fcl") return {r.query == "distance" ? 8 : 6, false, true};
-    if (r.query == "oracle")
-      return {r.level == "voxel" ? 0 : (r.level == "subvoxel" ? 1 : 2), false, false};
-    const int c = r.variant == "simple" ? 3 : (r.variant == "optimized" ? 4 : 5);
-    return {c, r.level == "exact", false};
-  };
-  auto name = [](const AccuracyRow& r) {
-    if (r.method == "fcl") return "FCL " + r.query + (r.query == "distance" ? " (OBBRSS)" : "");
-    if (r.query == "oracle") return "IST oracle, " + r.level + " level";
-    return "IST pairs " + r.variant + (r.level == "exact" ? " + exact" : ", voxel");
-  };
   std::vector<std::pair<std::string, std::string>> files;
   for (const bool p95 : {true, false}) {
-    LineChart c;
-    c.title = std::string("Speed against accuracy: ") + (p95 ? "95th percentile" : "maximum") +
-              " contact-distance error against query time";
-    c.subtitle = subtitle;
-    c.x_label = "median query time, us (thread CPU, log)";
-    c.y_label = std::string(p95 ? "p95" : "max") + " error of claimed distances, mm (log)";
-    c.log_x = c.log_y = true;
-    std::map<std::string, std::size_t> index;
-    for (const AccuracyRow& r : rows) {
-      const double err = p95 ? r.p95_err_mm : r.max_err_mm;
-      if (!std::isfinite(err) || !(r.us.median > 0)) continue;
-      const std::string key = name(r);
-      if (!index.count(key)) {
-        index[key] = c.series.size();
-        ChartSeries s;
-        s.name = key;
-        const Style st = style(r);
-        s.color = st.color;
-        s.dashed = st.dashed;
-        s.markers_only = st.markers;
-        c.series.push_back(s);
-      }
-      ChartSeries& s = c.series[index[key]];
-      s.x.push_back(r.us.median);
-      s.y.push_back(std::max(err, kErrorFloorMm));
-      // Voxel sizes beside the oracle's and the explicit pairs' points (the
-      // other sphere modes have the same errors: their labels would overlap).
-      std::string label;
-      if (r.method == "fcl") {
-        label = r.query == "distance" ? "" : r.variant;
-      } else if (r.query == "oracle" || r.variant == "explicit") {
-        label = VoxelLabel(r.voxel_mm);
-      }
-      s.labels.push_back(label);
-    }
+    const LineChart c = ErrorChart(rows, p95, subtitle);
     if (c.series.empty()) continue;
-    if (p95) {  // the front of the p95 chart
-      std::vector<const AccuracyRow*> front;
-      for (const AccuracyRow& r : rows) {
-        if (r.pareto) front.push_back(&r);
-      }
-      std::sort(front.begin(), front.end(), [](const AccuracyRow* a, const AccuracyRow* b) {
-        return a->us.median < b->us.median;
-      });
-      ChartSeries s;
-      s.name = "Pareto front (missing <= 1%)";
-      s.color = 7;
-      s.dashed = true;
-      for (const AccuracyRow* r : front) {
-        s.x.push_back(r->us.median);
-        s.y.push_back(std::max(r->p95_err_mm, kErrorFloorMm));
-      }
-      if (!s.x.empty()) c.series.push_back(s);
-    }
-    // The second, unlabelled line only extends the axis a decade below the
-    // floor, so points on the floor stay off the frame.
-    c.references = {{kErrorFloorMm, "error < 1e-5 mm"}, {0.1 * kErrorFloorMm, ""}};
-    c.width = 1300;
-    c.height = 800;
     files.emplace_back(p95 ? "accuracy.png" : "accuracy-max.png", RenderLineChartPng(c));
   }
   return files;

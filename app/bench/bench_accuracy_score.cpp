@@ -196,10 +196,11 @@ void MergeScore(const Score& from, Score* to) {
   to->contacts_defined = to->contacts_defined && from.contacts_defined;
 }
 
-void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score) {
+namespace {
+
+// Each claim's error against the truth (and whether it is a false contact).
+void ScoreClaims(const Answer& answer, PoseTruth* truth, Score* score) {
   const double delta = truth->delta_mm();
-  const Eigen::Isometry3d X_UL = truth->X_LU().inverse();
-  score->claims += answer.claims.size();
   auto judge = [&](double error, double truth_d) {
     score->errors.push_back(error);
     if (answer.cover == Cover::kNone) return;
@@ -237,15 +238,12 @@ void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score) {
     const double lower_bound = D - truth->samples().spacing_mm();
     judge(std::max(0.0, lower_bound - c.d_mm), lower_bound);
   }
-  if (answer.has_depth) {
-    score->pen_errors.push_back(std::abs(answer.max_penetration_mm - truth->max_penetration_mm()));
-  }
-  if (answer.cover == Cover::kNone) {
-    score->contacts_defined = false;
-    return;
-  }
+}
 
-  // Coverage of the truth contacts.
+// Which truth contacts a claim covers, by the answer's kind of cover.
+void ScoreCoverage(const Answer& answer, PoseTruth* truth, Score* score) {
+  const double delta = truth->delta_mm();
+  const Eigen::Isometry3d X_UL = truth->X_LU().inverse();
   std::unordered_set<std::int64_t> elements;
   std::vector<Eigen::Vector3d> points_U;
   for (const Claim& c : answer.claims) {
@@ -281,6 +279,21 @@ void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score) {
       if (half) ++score->missed_half;
     }
   }
+}
+
+}  // namespace
+
+void ScoreAnswer(const Answer& answer, PoseTruth* truth, Score* score) {
+  score->claims += answer.claims.size();
+  ScoreClaims(answer, truth, score);
+  if (answer.has_depth) {
+    score->pen_errors.push_back(std::abs(answer.max_penetration_mm - truth->max_penetration_mm()));
+  }
+  if (answer.cover == Cover::kNone) {
+    score->contacts_defined = false;
+    return;
+  }
+  ScoreCoverage(answer, truth, score);
 }
 
 }  // namespace occlude::app

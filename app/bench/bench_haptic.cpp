@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -56,109 +57,121 @@ HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double ma
   return row;
 }
 
+void Log(const HapticOptions& options, const std::string& line) {
+  if (options.log) *options.log << "bench --haptic: " << line << std::endl;
+}
+
+// The trajectory at the contact height: the smallest offset along the axis at which the
+// sub-voxel oracle measures at most 0.02 mm of penetration (bisection), per keyframe.
+std::unique_ptr<HapticTrajectory> ContactTrajectory(const BenchCase& bc,
+                                                    const collision::JawOracle& oracle,
+                                                    const HapticOptions& options) {
+  collision::OracleRequest probe;
+  probe.keep_points = false;
+  auto contact_offset = [&](const Eigen::Isometry3d& X_slid) {
+    collision::OracleResult r;
+    double lo = -0.5, hi = 2.0;
+    for (int i = 0; i < 16; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      oracle.Query(Eigen::Translation3d(mid * bc.axis_L) * X_slid, probe, &r);
+      (r.max_penetration_mm > 0.02 || r.deep_samples > 0 ? lo : hi) = mid;
+    }
+    return hi;
+  };
+  Log(options, "finding the contact height along the trajectory");
+  return std::make_unique<HapticTrajectory>(bc, oracle.arch().lateral_L, oracle.arch().anterior_L,
+                                            options.seconds, options.seed, contact_offset);
+}
+
+// The oracle at each accuracy level and the explicit boolean query, at one period.
+void AddOracleTickRows(const HapticTrajectory& trajectory, const collision::JawOracle& oracle,
+                       double voxel, double period_us, const HapticOptions& options,
+                       std::vector<HapticRow>* rows) {
+  const std::pair<collision::AccuracyLevel, const char*> levels[] = {
+      {collision::AccuracyLevel::kVoxel, "oracle-voxel"},
+      {collision::AccuracyLevel::kSubVoxel, "oracle-subvoxel"},
+      {collision::AccuracyLevel::kExact, "oracle-exact"}};
+  for (const auto& [level, name] : levels) {
+    collision::OracleRequest request;
+    request.level = level;
+    request.contact_band_mm = options.delta_mm;
+    collision::OracleResult result;
+    HapticRow row = Replay(trajectory, period_us, options.max_wall_factor,
+                           [&](const Eigen::Isometry3d& X) { oracle.Query(X, request, &result); });
+    row.method = "ist";
+    row.variant = "explicit";
+    row.query = name;
+    row.voxel_mm = voxel;
+    Log(options, std::string(name) + " at " + Fixed(period_us, 0) + " us: p99 " +
+                     Fixed(row.p99_us, 1) + " us, " + std::to_string(row.misses) + " misses of " +
+                     std::to_string(row.ticks));
+    rows->push_back(row);
+  }
+  collision::CollisionRequest request;
+  request.first_only = true;
+  collision::CollisionResult result;
+  HapticRow row =
+      Replay(trajectory, period_us, options.max_wall_factor, [&](const Eigen::Isometry3d& X) {
+        collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, request, &result);
+      });
+  row.method = "ist";
+  row.variant = "explicit";
+  row.query = "boolean";
+  row.voxel_mm = voxel;
+  rows->push_back(row);
+}
+
+// FCL's boolean (OBB), all-contacts and distance (OBBRSS) queries at every period.
+void AddFclTickRows(const BenchCase& bc, const HapticTrajectory& trajectory,
+                    const HapticOptions& options, std::vector<HapticRow>* rows) {
+  Log(options, "FCL: building OBB and OBBRSS models");
+  const FclPeer obb(*bc.lower_L, *bc.upper_U, FclBv::kOBB);
+  const FclPeer obbrss(*bc.lower_L, *bc.upper_U, FclBv::kOBBRSS);
+  struct Spec {
+    const FclPeer* peer;
+    const char* variant;
+    const char* query;
+  };
+  for (const double period_us : options.periods_us) {
+    for (const Spec& spec : {Spec{&obb, "obb", "boolean"}, Spec{&obbrss, "obbrss", "collide-all"},
+                             Spec{&obbrss, "obbrss", "distance"}}) {
+      const std::string query = spec.query;
+      HapticRow row =
+          Replay(trajectory, period_us, options.max_wall_factor, [&](const Eigen::Isometry3d& X) {
+            if (query == "boolean") {
+              (void)spec.peer->Collide(X);
+            } else if (query == "collide-all") {
+              (void)spec.peer->CollideAll(X);
+            } else {
+              (void)spec.peer->Distance(X);
+            }
+          });
+      row.method = "fcl";
+      row.variant = spec.variant;
+      row.query = query;
+      Log(options, "FCL " + row.variant + " " + query + " at " + Fixed(period_us, 0) + " us: p99 " +
+                       Fixed(row.p99_us, 1) + " us, " + std::to_string(row.misses) + " misses of " +
+                       std::to_string(row.ticks));
+      rows->push_back(row);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<HapticRow> RunHaptic(const BenchCase& bc, const HapticOptions& options) {
   std::vector<HapticRow> rows;
-  auto log = [&](const std::string& line) {
-    if (options.log) *options.log << "bench --haptic: " << line << std::endl;
-  };
   std::unique_ptr<HapticTrajectory> trajectory;
-  std::vector<FclPeer> peers;
   for (const double voxel : options.voxels_mm) {
-    log("building the oracle at " + Fixed(voxel, 2) + " mm");
-    collision::OracleOptions oracle_options;
-    oracle_options.voxel_size_mm = voxel;
-    oracle_options.sample_spacing_mm = std::min(0.3, 1.5 * voxel);
-    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, oracle_options);
-    if (!trajectory) {
-      // Contact height: the smallest offset along the axis at which the
-      // sub-voxel oracle measures at most 0.02 mm of penetration (bisection).
-      collision::OracleRequest probe;
-      probe.keep_points = false;
-      auto contact_offset = [&](const Eigen::Isometry3d& X_slid) {
-        collision::OracleResult r;
-        double lo = -0.5, hi = 2.0;
-        for (int i = 0; i < 16; ++i) {
-          const double mid = 0.5 * (lo + hi);
-          oracle.Query(Eigen::Translation3d(mid * bc.axis_L) * X_slid, probe, &r);
-          (r.max_penetration_mm > 0.02 || r.deep_samples > 0 ? lo : hi) = mid;
-        }
-        return hi;
-      };
-      log("finding the contact height along the trajectory");
-      trajectory =
-          std::make_unique<HapticTrajectory>(bc, oracle.arch().lateral_L, oracle.arch().anterior_L,
-                                             options.seconds, options.seed, contact_offset);
-    }
-    const std::pair<collision::AccuracyLevel, const char*> levels[] = {
-        {collision::AccuracyLevel::kVoxel, "oracle-voxel"},
-        {collision::AccuracyLevel::kSubVoxel, "oracle-subvoxel"},
-        {collision::AccuracyLevel::kExact, "oracle-exact"}};
+    Log(options, "building the oracle at " + Fixed(voxel, 2) + " mm");
+    const collision::JawOracle oracle(bc.lower_L, bc.upper_U, OracleOptionsFor(voxel));
+    if (!trajectory) trajectory = ContactTrajectory(bc, oracle, options);
     for (const double period_us : options.periods_us) {
-      for (const auto& [level, name] : levels) {
-        collision::OracleRequest request;
-        request.level = level;
-        request.contact_band_mm = options.delta_mm;
-        collision::OracleResult result;
-        HapticRow row =
-            Replay(*trajectory, period_us, options.max_wall_factor,
-                   [&](const Eigen::Isometry3d& X) { oracle.Query(X, request, &result); });
-        row.method = "ist";
-        row.variant = "explicit";
-        row.query = name;
-        row.voxel_mm = voxel;
-        log(std::string(name) + " at " + Fixed(period_us, 0) + " us: p99 " + Fixed(row.p99_us, 1) +
-            " us, " + std::to_string(row.misses) + " misses of " + std::to_string(row.ticks));
-        rows.push_back(row);
-      }
-      collision::CollisionRequest request;
-      request.first_only = true;
-      collision::CollisionResult result;
-      HapticRow row =
-          Replay(*trajectory, period_us, options.max_wall_factor, [&](const Eigen::Isometry3d& X) {
-            collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, request, &result);
-          });
-      row.method = "ist";
-      row.variant = "explicit";
-      row.query = "boolean";
-      row.voxel_mm = voxel;
-      rows.push_back(row);
+      AddOracleTickRows(*trajectory, oracle, voxel, period_us, options, &rows);
     }
   }
-  if (options.fcl && FclPeer::Available() && trajectory) {
-    log("FCL: building OBB and OBBRSS models");
-    const FclPeer obb(*bc.lower_L, *bc.upper_U, FclBv::kOBB);
-    const FclPeer obbrss(*bc.lower_L, *bc.upper_U, FclBv::kOBBRSS);
-    for (const double period_us : options.periods_us) {
-      struct Spec {
-        const FclPeer* peer;
-        const char* variant;
-        const char* query;
-      };
-      for (const Spec& spec : {Spec{&obb, "obb", "boolean"}, Spec{&obbrss, "obbrss", "collide-all"},
-                               Spec{&obbrss, "obbrss", "distance"}}) {
-        const std::string query = spec.query;
-        HapticRow row = Replay(*trajectory, period_us, options.max_wall_factor,
-                               [&](const Eigen::Isometry3d& X) {
-                                 if (query == "boolean") {
-                                   (void)spec.peer->Collide(X);
-                                 } else if (query == "collide-all") {
-                                   (void)spec.peer->CollideAll(X);
-                                 } else {
-                                   (void)spec.peer->Distance(X);
-                                 }
-                               });
-        row.method = "fcl";
-        row.variant = spec.variant;
-        row.query = query;
-        log("FCL " + row.variant + " " + query + " at " + Fixed(period_us, 0) + " us: p99 " +
-            Fixed(row.p99_us, 1) + " us, " + std::to_string(row.misses) + " misses of " +
-            std::to_string(row.ticks));
-        rows.push_back(row);
-      }
-    }
-  }
+  if (options.fcl && FclPeer::Available() && trajectory)
+    AddFclTickRows(bc, *trajectory, options, &rows);
   return rows;
 }
 

@@ -102,72 +102,86 @@ AffineFit FitAffine(const std::vector<double>& x, const std::vector<double>& y,
   return fit;
 }
 
-PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::string& mesh_name,
-                     const BenchCase* pair, const PaperOptions& options) {
-  PaperResult result;
-  result.mesh_name = mesh_name;
-  result.triangles = mesh->num_triangles();
-  result.extent_mm = mesh->Bounds().sizes();
-  result.area_mm2 = mesh->SurfaceArea();
-  const double longest = result.extent_mm.maxCoeff();
+namespace {
 
-  for (const double s : options.voxels_mm) {
-    Log(options, mesh_name + " at " + std::to_string(s) + " mm");
-    PaperBuildRow row;
-    row.voxel_mm = s;
-    row.paper_grid_n = NextPowerOfTwo(static_cast<long>(std::ceil(longest / s)));
-    row.paper_dense_cells = std::pow(static_cast<double>(row.paper_grid_n), 3.0);
-    collision::SphereTreeOptions tree_options;
-    tree_options.voxelize.voxel_size_mm = s;
-    {
-      collision::VoxelGrid grid;
-      collision::VoxelizeStats stats;
-      row.voxelize_us = MedianBuildMicros(options.build_reps, &row.build_reps, [&] {
-        grid = collision::Voxelize(*mesh, tree_options.voxelize, &stats);
-      });
-      int octree_runs = 0;
-      collision::Octree octree;
-      row.octree_us = MedianBuildMicros(options.build_reps, &octree_runs,
-                                        [&] { octree = collision::BuildOctree(grid); });
-      row.dims = grid.dims;
-      row.surface = stats.surface_voxels;
-      row.proximity = stats.proximity_voxels;
-      row.interior = stats.interior_voxels;
-      row.triangle_tests = stats.triangle_voxel_tests;
-      row.surface_s = stats.seconds_surface;
-      row.proximity_s = stats.seconds_proximity;
-      row.interior_s = stats.seconds_interior;
-    }
-    // The whole tree once more, for the explicit spheres and the sphere volumes.
-    const double t0 = ThreadCpuSeconds();
-    const collision::SphereTree tree = collision::SphereTree::Build(mesh, tree_options);
-    row.tree_us = 1e6 * (ThreadCpuSeconds() - t0);
-    const collision::SphereTreeStats& st = tree.stats();
-    row.explicit_s = st.seconds_explicit;
-    row.nodes = st.nodes;
-    row.leaves = st.leaves;
-    row.levels = tree.octree().top_level + 1;
-    row.paper_min_nodes = PaperMinNodes(st.leaves);
-    row.bytes_grid = st.bytes_grid;
-    row.bytes_octree = st.bytes_octree;
-    row.bytes_explicit = st.bytes_explicit;
-    result.builds.push_back(row);
-    for (const collision::LevelStats& ls : st.levels) {
-      PaperLevelRow level;
-      level.voxel_mm = s;
-      level.level = ls.level;
-      level.nodes = ls.nodes;
-      level.simple_mm3 = ls.simple_volume_mm3;
-      level.optimized_mm3 = ls.optimized_volume_mm3;
-      level.unit_mm3 = std::sqrt(3.0) / 2.0 * EIGEN_PI * std::pow(std::ldexp(s, ls.level), 3.0);
-      result.levels.push_back(level);
-    }
+// The paper's own figures fitted alike: its surface voxel counts (10, 5, 1 mm) and the dense
+// grid it visits (n^3) at our fine voxel sizes `s`.
+void AddPaperFits(const std::vector<double>& s, PaperResult* result) {
+  std::vector<double> ps(std::begin(PaperReference::kVoxel), std::end(PaperReference::kVoxel));
+  std::vector<double> pc(std::begin(PaperReference::kSurfaceVoxels),
+                         std::end(PaperReference::kSurfaceVoxels));
+  result->fits.push_back(FitPowerLaw(ps, pc, "paper: surface voxels vs voxel size (10, 5, 1 mm)"));
+  std::vector<double> dense;
+  for (const double v : s) {
+    dense.push_back(std::pow(static_cast<double>(NextPowerOfTwo(
+                                 static_cast<long>(std::ceil(PaperReference::kLongestEdgeMm / v)))),
+                             3.0));
   }
+  result->fits.push_back(FitPowerLaw(s, dense, "paper: dense grid cells n^3 vs voxel size"));
+}
 
-  // Growth on the fine end (s <= 1 mm), where per-voxel work dominates the
-  // per-triangle work; the paper's cubic claim is about this range.
+// Figs. 4, 5, 7 and 8 at voxel size s: voxelization and octree timed (median of
+// build_reps), then the whole tree once more for the explicit spheres; Fig. 9's rows (the
+// sphere volumes per level) go to `levels`.
+PaperBuildRow MeasureBuild(const std::shared_ptr<const io::TriangleMesh>& mesh, double s,
+                           double longest, const PaperOptions& options,
+                           std::vector<PaperLevelRow>* levels) {
+  PaperBuildRow row;
+  row.voxel_mm = s;
+  row.paper_grid_n = NextPowerOfTwo(static_cast<long>(std::ceil(longest / s)));
+  row.paper_dense_cells = std::pow(static_cast<double>(row.paper_grid_n), 3.0);
+  collision::SphereTreeOptions tree_options;
+  tree_options.voxelize.voxel_size_mm = s;
+  {
+    collision::VoxelGrid grid;
+    collision::VoxelizeStats stats;
+    row.voxelize_us = MedianBuildMicros(options.build_reps, &row.build_reps, [&] {
+      grid = collision::Voxelize(*mesh, tree_options.voxelize, &stats);
+    });
+    int octree_runs = 0;
+    collision::Octree octree;
+    row.octree_us = MedianBuildMicros(options.build_reps, &octree_runs,
+                                      [&] { octree = collision::BuildOctree(grid); });
+    row.dims = grid.dims;
+    row.surface = stats.surface_voxels;
+    row.proximity = stats.proximity_voxels;
+    row.interior = stats.interior_voxels;
+    row.triangle_tests = stats.triangle_voxel_tests;
+    row.surface_s = stats.seconds_surface;
+    row.proximity_s = stats.seconds_proximity;
+    row.interior_s = stats.seconds_interior;
+  }
+  const double t0 = ThreadCpuSeconds();
+  const collision::SphereTree tree = collision::SphereTree::Build(mesh, tree_options);
+  row.tree_us = 1e6 * (ThreadCpuSeconds() - t0);
+  const collision::SphereTreeStats& st = tree.stats();
+  row.explicit_s = st.seconds_explicit;
+  row.nodes = st.nodes;
+  row.leaves = st.leaves;
+  row.levels = tree.octree().top_level + 1;
+  row.paper_min_nodes = PaperMinNodes(st.leaves);
+  row.bytes_grid = st.bytes_grid;
+  row.bytes_octree = st.bytes_octree;
+  row.bytes_explicit = st.bytes_explicit;
+  for (const collision::LevelStats& ls : st.levels) {
+    PaperLevelRow level;
+    level.voxel_mm = s;
+    level.level = ls.level;
+    level.nodes = ls.nodes;
+    level.simple_mm3 = ls.simple_volume_mm3;
+    level.optimized_mm3 = ls.optimized_volume_mm3;
+    level.unit_mm3 = std::sqrt(3.0) / 2.0 * EIGEN_PI * std::pow(std::ldexp(s, ls.level), 3.0);
+    levels->push_back(level);
+  }
+  return row;
+}
+
+// The growth fits: power laws on the fine end (s <= 1 mm, where per-voxel work dominates the
+// per-triangle work; the paper's cubic claim is about this range) and between the two finest
+// sizes, affine fits over every size, and the paper's own figures.
+void FitGrowth(PaperResult* result) {
   std::vector<double> s, surface, voxelize, octree, nodes, bytes;
-  for (const PaperBuildRow& r : result.builds) {
+  for (const PaperBuildRow& r : result->builds) {
     if (r.voxel_mm > 1.0 + 1e-9) continue;
     s.push_back(r.voxel_mm);
     surface.push_back(static_cast<double>(r.surface));
@@ -176,47 +190,47 @@ PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::st
     nodes.push_back(static_cast<double>(r.nodes));
     bytes.push_back(static_cast<double>(r.bytes_grid + r.bytes_octree));
   }
-  // Local growth between the two finest voxel sizes.
   std::vector<double> s2, voxelize2, octree2;
   for (std::size_t i = s.size() >= 2 ? s.size() - 2 : 0; i < s.size(); ++i) {
     s2.push_back(s[i]);
     voxelize2.push_back(voxelize[i]);
     octree2.push_back(octree[i]);
   }
-  {
-    // Over every voxel size: a fixed cost per triangle plus a cost per voxel.
-    std::vector<double> all_surface, all_voxelize, all_octree;
-    for (const PaperBuildRow& r : result.builds) {
-      all_surface.push_back(static_cast<double>(r.surface));
-      all_voxelize.push_back(r.voxelize_us);
-      all_octree.push_back(r.octree_us);
-    }
-    result.affine = {FitAffine(all_surface, all_voxelize, "voxelization CPU us vs surface voxels"),
-                     FitAffine(all_surface, all_octree, "octree build CPU us vs surface voxels")};
+  std::vector<double> all_surface, all_voxelize, all_octree;
+  for (const PaperBuildRow& r : result->builds) {
+    all_surface.push_back(static_cast<double>(r.surface));
+    all_voxelize.push_back(r.voxelize_us);
+    all_octree.push_back(r.octree_us);
   }
-  result.fits = {FitPowerLaw(s, surface, "surface voxels vs voxel size"),
-                 FitPowerLaw(s, voxelize, "voxelization CPU time vs voxel size"),
-                 FitPowerLaw(s, octree, "octree build CPU time vs voxel size"),
-                 FitPowerLaw(s, nodes, "octree nodes vs voxel size"),
-                 FitPowerLaw(s, bytes, "grid + octree bytes vs voxel size"),
-                 FitPowerLaw(surface, voxelize, "voxelization CPU time vs surface voxels"),
-                 FitPowerLaw(surface, octree, "octree build CPU time vs surface voxels"),
-                 FitPowerLaw(s2, voxelize2, "voxelization CPU time vs voxel size, two finest"),
-                 FitPowerLaw(s2, octree2, "octree build CPU time vs voxel size, two finest")};
-  {
-    std::vector<double> ps(std::begin(PaperReference::kVoxel), std::end(PaperReference::kVoxel));
-    std::vector<double> pc(std::begin(PaperReference::kSurfaceVoxels),
-                           std::end(PaperReference::kSurfaceVoxels));
-    result.fits.push_back(FitPowerLaw(ps, pc, "paper: surface voxels vs voxel size (10, 5, 1 mm)"));
-    std::vector<double> dense;
-    for (const double v : s) {
-      dense.push_back(std::pow(static_cast<double>(NextPowerOfTwo(static_cast<long>(
-                                   std::ceil(PaperReference::kLongestEdgeMm / v)))),
-                               3.0));
-    }
-    result.fits.push_back(FitPowerLaw(s, dense, "paper: dense grid cells n^3 vs voxel size"));
-  }
+  result->affine = {FitAffine(all_surface, all_voxelize, "voxelization CPU us vs surface voxels"),
+                    FitAffine(all_surface, all_octree, "octree build CPU us vs surface voxels")};
+  result->fits = {FitPowerLaw(s, surface, "surface voxels vs voxel size"),
+                  FitPowerLaw(s, voxelize, "voxelization CPU time vs voxel size"),
+                  FitPowerLaw(s, octree, "octree build CPU time vs voxel size"),
+                  FitPowerLaw(s, nodes, "octree nodes vs voxel size"),
+                  FitPowerLaw(s, bytes, "grid + octree bytes vs voxel size"),
+                  FitPowerLaw(surface, voxelize, "voxelization CPU time vs surface voxels"),
+                  FitPowerLaw(surface, octree, "octree build CPU time vs surface voxels"),
+                  FitPowerLaw(s2, voxelize2, "voxelization CPU time vs voxel size, two finest"),
+                  FitPowerLaw(s2, octree2, "octree build CPU time vs voxel size, two finest")};
+  AddPaperFits(s, result);
+}
 
+}  // namespace
+
+PaperResult RunPaper(std::shared_ptr<const io::TriangleMesh> mesh, const std::string& mesh_name,
+                     const BenchCase* pair, const PaperOptions& options) {
+  PaperResult result;
+  result.mesh_name = mesh_name;
+  result.triangles = mesh->num_triangles();
+  result.extent_mm = mesh->Bounds().sizes();
+  result.area_mm2 = mesh->SurfaceArea();
+  const double longest = result.extent_mm.maxCoeff();
+  for (const double s : options.voxels_mm) {
+    Log(options, mesh_name + " at " + std::to_string(s) + " mm");
+    result.builds.push_back(MeasureBuild(mesh, s, longest, options, &result.levels));
+  }
+  FitGrowth(&result);
   if (pair != nullptr && options.sweep) {
     BenchOptions bench;
     bench.voxels_mm = options.sweep_voxels_mm;

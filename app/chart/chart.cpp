@@ -102,40 +102,55 @@ std::vector<std::string> WrapChartText(const std::string& text, double scale, in
   return lines;
 }
 
-std::string RenderLineChartPng(const LineChart& chart) {
-  const bool categorical = !chart.x_categories.empty();
-  Axis ax, ay;
-  ax.log = chart.log_x && !categorical;
-  ay.log = chart.log_y;
+namespace {
+
+// The axes of a chart: the drawable data's range (with the references and y_include), padded;
+// a log y axis snapped to whole decades.
+struct ChartAxes {
+  Axis x, y;
+  bool categorical = false;
+};
+
+void Include(double v, double* lo, double* hi) {
+  *lo = std::min(*lo, v);
+  *hi = std::max(*hi, v);
+}
+
+ChartAxes DataRange(const LineChart& chart) {
+  ChartAxes a;
+  a.categorical = !chart.x_categories.empty();
+  a.x.log = chart.log_x && !a.categorical;
+  a.y.log = chart.log_y;
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   double y_lo = x_lo, y_hi = -x_lo;
   std::size_t drawable = 0;
   for (const ChartSeries& s : chart.series) {
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (!ax.Drawable(s.x[i]) || !ay.Drawable(s.y[i])) continue;
-      x_lo = std::min(x_lo, ax.Transform(s.x[i]));
-      x_hi = std::max(x_hi, ax.Transform(s.x[i]));
-      y_lo = std::min(y_lo, ay.Transform(s.y[i]));
-      y_hi = std::max(y_hi, ay.Transform(s.y[i]));
+      if (!a.x.Drawable(s.x[i]) || !a.y.Drawable(s.y[i])) continue;
+      Include(a.x.Transform(s.x[i]), &x_lo, &x_hi);
+      Include(a.y.Transform(s.y[i]), &y_lo, &y_hi);
       ++drawable;
     }
   }
   if (drawable == 0) throw std::invalid_argument("chart '" + chart.title + "': no drawable point");
   for (const ChartReference& r : chart.references) {
-    if (!ay.Drawable(r.y)) continue;
-    y_lo = std::min(y_lo, ay.Transform(r.y));
-    y_hi = std::max(y_hi, ay.Transform(r.y));
+    if (a.y.Drawable(r.y)) Include(a.y.Transform(r.y), &y_lo, &y_hi);
   }
   for (const double y : chart.y_include) {
-    if (!ay.Drawable(y)) continue;
-    y_lo = std::min(y_lo, ay.Transform(y));
-    y_hi = std::max(y_hi, ay.Transform(y));
+    if (a.y.Drawable(y)) Include(a.y.Transform(y), &y_lo, &y_hi);
   }
-  if (categorical) {
+  a.x.lo = x_lo, a.x.hi = x_hi, a.y.lo = y_lo, a.y.hi = y_hi;
+  return a;
+}
+
+ChartAxes PaddedAxes(const LineChart& chart) {
+  ChartAxes a = DataRange(chart);
+  double &x_lo = a.x.lo, &x_hi = a.x.hi, &y_lo = a.y.lo, &y_hi = a.y.hi;
+  if (a.categorical) {
     x_lo = -0.5;
     x_hi = static_cast<double>(chart.x_categories.size()) - 0.5;
   }
-  if (ay.log) {
+  if (a.y.log) {
     y_lo = std::floor(y_lo);
     y_hi = std::max(std::ceil(y_hi), y_lo + 1.0);
   } else {
@@ -143,39 +158,64 @@ std::string RenderLineChartPng(const LineChart& chart) {
     y_lo -= pad;
     y_hi += pad;
   }
-  if (ax.log) {  // padded, not snapped to decades (points stay off the frame)
+  if (a.x.log) {  // padded, not snapped to decades (points stay off the frame)
     const double span = std::max(x_hi - x_lo, 0.5), mid = 0.5 * (x_lo + x_hi);
     x_lo = std::min(x_lo, mid - 0.5 * span) - 0.06 * span;
     x_hi = std::max(x_hi, mid + 0.5 * span) + 0.06 * span;
-  } else if (!categorical) {
+  } else if (!a.categorical) {
     const double pad = x_hi > x_lo ? 0.03 * (x_hi - x_lo) : 1.0;
     x_lo -= pad;
     x_hi += pad;
   }
-  ax.lo = x_lo, ax.hi = x_hi, ay.lo = y_lo, ay.hi = y_hi;
+  return a;
+}
 
-  cv::Mat img(chart.height, chart.width, CV_8UC3, kWhite);
-  const int left = 95, right = 300, bottom = 75;
-  constexpr double kSubtitleScale = 0.45;
-  constexpr int kSubtitleLine = 18;  // pixels per subtitle line
-  const std::vector<std::string> subtitle =
-      WrapChartText(chart.subtitle, kSubtitleScale, chart.width - left - 20);
-  const int top = subtitle.empty() ? 60 : 62 + kSubtitleLine * static_cast<int>(subtitle.size());
-  const cv::Rect plot(left, top, chart.width - left - right, chart.height - top - bottom);
-  auto px = [&](double fx) { return plot.x + fx * plot.width; };
-  auto py = [&](double fy) { return plot.y + (1.0 - fy) * plot.height; };
+// The plot area inside the image: margins for the tick labels, the legend (right) and the
+// title with the subtitle's lines.
+struct ChartLayout {
+  static constexpr int kLeft = 95, kRight = 300, kBottom = 75;
+  static constexpr double kSubtitleScale = 0.45;
+  static constexpr int kSubtitleLine = 18;  // pixels per subtitle line
+  std::vector<std::string> subtitle;
+  int top = 60;
+  cv::Rect plot;
+  double Px(double fx) const { return plot.x + fx * plot.width; }
+  double Py(double fy) const { return plot.y + (1.0 - fy) * plot.height; }
+};
 
-  // Grid and ticks.
-  std::vector<std::pair<double, std::string>> y_ticks, x_ticks;
+ChartLayout Layout(const LineChart& chart) {
+  ChartLayout l;
+  l.subtitle = WrapChartText(chart.subtitle, ChartLayout::kSubtitleScale,
+                             chart.width - ChartLayout::kLeft - 20);
+  l.top = l.subtitle.empty()
+              ? 60
+              : 62 + ChartLayout::kSubtitleLine * static_cast<int>(l.subtitle.size());
+  l.plot =
+      cv::Rect(ChartLayout::kLeft, l.top, chart.width - ChartLayout::kLeft - ChartLayout::kRight,
+               chart.height - l.top - ChartLayout::kBottom);
+  return l;
+}
+
+using Ticks = std::vector<std::pair<double, std::string>>;
+
+// Tick positions (in the axis' transformed units) and labels.
+Ticks YTicks(const Axis& ay) {
+  Ticks ticks;
   if (ay.log) {
     for (double e = ay.lo; e <= ay.hi + 1e-9; e += 1.0)
-      y_ticks.emplace_back(e, FormatTick(std::pow(10.0, e)));
+      ticks.emplace_back(e, FormatTick(std::pow(10.0, e)));
   } else {
-    for (const double t : LinearTicks(ay.lo, ay.hi)) y_ticks.emplace_back(t, FormatTick(t));
+    for (const double t : LinearTicks(ay.lo, ay.hi)) ticks.emplace_back(t, FormatTick(t));
   }
-  if (categorical) {
+  return ticks;
+}
+
+Ticks XTicks(const LineChart& chart, const ChartAxes& axes) {
+  const Axis& ax = axes.x;
+  Ticks ticks;
+  if (axes.categorical) {
     for (std::size_t i = 0; i < chart.x_categories.size(); ++i) {
-      x_ticks.emplace_back(static_cast<double>(i), chart.x_categories[i]);
+      ticks.emplace_back(static_cast<double>(i), chart.x_categories[i]);
     }
   } else if (ax.log) {
     // Decades, and 2x / 5x in between when fewer than three decades show.
@@ -184,18 +224,25 @@ std::string RenderLineChartPng(const LineChart& chart) {
       for (const double m : {1.0, 2.0, 5.0}) {
         const double t = e + std::log10(m);
         if ((m == 1.0 || fine) && t >= ax.lo && t <= ax.hi)
-          x_ticks.emplace_back(t, FormatTick(std::pow(10.0, t)));
+          ticks.emplace_back(t, FormatTick(std::pow(10.0, t)));
       }
     }
   } else {
-    for (const double t : LinearTicks(ax.lo, ax.hi)) x_ticks.emplace_back(t, FormatTick(t));
+    for (const double t : LinearTicks(ax.lo, ax.hi)) ticks.emplace_back(t, FormatTick(t));
   }
-  for (const auto& [t, label] : y_ticks) {
-    const double y = py((t - ay.lo) / (ay.hi - ay.lo));
+  return ticks;
+}
+
+// Grid lines, tick labels, minor marks of log axes and the plot frame.
+void DrawGrid(cv::Mat& img, const LineChart& chart, const ChartAxes& axes, const ChartLayout& l) {
+  const Axis &ax = axes.x, &ay = axes.y;
+  const cv::Rect& plot = l.plot;
+  for (const auto& [t, label] : YTicks(ay)) {
+    const double y = l.Py((t - ay.lo) / (ay.hi - ay.lo));
     cv::line(img, cv::Point2d(plot.x, y), cv::Point2d(plot.x + plot.width, y), kGrid, 1);
     if (ay.log && t + 1.0 <= ay.hi + 1e-9) {  // minor decade lines
       for (int m = 2; m <= 9; ++m) {
-        const double ym = py((t + std::log10(m) - ay.lo) / (ay.hi - ay.lo));
+        const double ym = l.Py((t + std::log10(m) - ay.lo) / (ay.hi - ay.lo));
         cv::line(img, cv::Point2d(plot.x, ym), cv::Point2d(plot.x + 6, ym), kInk, 1);
       }
     }
@@ -203,8 +250,8 @@ std::string RenderLineChartPng(const LineChart& chart) {
     PutText(img, label, cv::Point(plot.x - 8 - size.width, static_cast<int>(y) + size.height / 2),
             0.5, kInk);
   }
-  for (const auto& [t, label] : x_ticks) {
-    const double x = px((t - ax.lo) / (ax.hi - ax.lo));
+  for (const auto& [t, label] : XTicks(chart, axes)) {
+    const double x = l.Px((t - ax.lo) / (ax.hi - ax.lo));
     cv::line(img, cv::Point2d(x, plot.y), cv::Point2d(x, plot.y + plot.height), kGrid, 1);
     const cv::Size size = TextSize(label, 0.45);
     PutText(img, label, cv::Point(static_cast<int>(x) - size.width / 2, plot.y + plot.height + 20),
@@ -215,85 +262,93 @@ std::string RenderLineChartPng(const LineChart& chart) {
       for (int m = 2; m <= 9; ++m) {
         const double t = e + std::log10(m);
         if (t < ax.lo || t > ax.hi) continue;
-        const double xm = px((t - ax.lo) / (ax.hi - ax.lo));
+        const double xm = l.Px((t - ax.lo) / (ax.hi - ax.lo));
         cv::line(img, cv::Point2d(xm, plot.y + plot.height),
                  cv::Point2d(xm, plot.y + plot.height - 6), kInk, 1);
       }
     }
   }
   cv::rectangle(img, plot, kInk, 1);
+}
 
-  // Reference lines.
+void DrawReferences(cv::Mat& img, const LineChart& chart, const Axis& ay, const ChartLayout& l) {
   for (const ChartReference& r : chart.references) {
     if (!ay.Drawable(r.y)) continue;
-    const double y = py(ay.Fraction(r.y));
-    DashedLine(img, cv::Point2d(plot.x, y), cv::Point2d(plot.x + plot.width, y),
+    const double y = l.Py(ay.Fraction(r.y));
+    DashedLine(img, cv::Point2d(l.plot.x, y), cv::Point2d(l.plot.x + l.plot.width, y),
                cv::Scalar(0, 0, 170), 1);
-    PutText(img, r.label, cv::Point(plot.x + 6, static_cast<int>(y) - 5), 0.45,
+    PutText(img, r.label, cv::Point(l.plot.x + 6, static_cast<int>(y) - 5), 0.45,
             cv::Scalar(0, 0, 170));
   }
+}
 
-  // Series.
-  cv::Mat clip = img(plot);
-  for (std::size_t k = 0; k < chart.series.size(); ++k) {
-    const ChartSeries& s = chart.series[k];
-    const cv::Scalar color =
-        kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
-    bool have_prev = false;
-    cv::Point2d prev;
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (!ax.Drawable(s.x[i]) || !ay.Drawable(s.y[i])) {
-        have_prev = false;
-        continue;
-      }
-      const cv::Point2d p(px(ax.Fraction(s.x[i])) - plot.x, py(ay.Fraction(s.y[i])) - plot.y);
-      if (have_prev && !s.markers_only) {
-        if (s.dashed) {
-          DashedLine(clip, prev, p, color, 2);
-        } else {
-          cv::line(clip, prev, p, color, 2, cv::LINE_AA);
-        }
-      }
-      if (s.dashed) {
-        cv::rectangle(clip, p - cv::Point2d(3, 3), p + cv::Point2d(3, 3), color, cv::FILLED);
-      } else {
-        cv::circle(clip, p, 4, color, cv::FILLED, cv::LINE_AA);
-      }
-      if (i < s.labels.size() && !s.labels[i].empty()) {
-        PutText(clip, s.labels[i], cv::Point(static_cast<int>(p.x) + 6, static_cast<int>(p.y) - 6),
-                0.4, color);
-      }
-      prev = p;
-      have_prev = true;
+cv::Scalar SeriesColour(const ChartSeries& s, std::size_t k) {
+  return kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
+}
+
+// One series inside the plot area (clipped): lines (dashed or solid), markers, labels.
+void DrawSeries(cv::Mat& clip, const ChartSeries& s, const cv::Scalar& color, const ChartAxes& axes,
+                const ChartLayout& l) {
+  bool have_prev = false;
+  cv::Point2d prev;
+  for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+    if (!axes.x.Drawable(s.x[i]) || !axes.y.Drawable(s.y[i])) {
+      have_prev = false;
+      continue;
     }
+    const cv::Point2d p(l.Px(axes.x.Fraction(s.x[i])) - l.plot.x,
+                        l.Py(axes.y.Fraction(s.y[i])) - l.plot.y);
+    if (have_prev && !s.markers_only) {
+      if (s.dashed) {
+        DashedLine(clip, prev, p, color, 2);
+      } else {
+        cv::line(clip, prev, p, color, 2, cv::LINE_AA);
+      }
+    }
+    if (s.dashed) {
+      cv::rectangle(clip, p - cv::Point2d(3, 3), p + cv::Point2d(3, 3), color, cv::FILLED);
+    } else {
+      cv::circle(clip, p, 4, color, cv::FILLED, cv::LINE_AA);
+    }
+    if (i < s.labels.size() && !s.labels[i].empty()) {
+      PutText(clip, s.labels[i], cv::Point(static_cast<int>(p.x) + 6, static_cast<int>(p.y) - 6),
+              0.4, color);
+    }
+    prev = p;
+    have_prev = true;
   }
+}
 
-  // Titles, axis labels, legend.
-  PutText(img, chart.title, cv::Point(left, 30), 0.7, kInk, 2);
-  for (std::size_t i = 0; i < subtitle.size(); ++i) {
-    PutText(img, subtitle[i], cv::Point(left, 58 + kSubtitleLine * static_cast<int>(i)),
-            kSubtitleScale, kInk);
+// The title, the subtitle's lines and the axis labels (the y label rotated).
+void DrawTitles(cv::Mat& img, const LineChart& chart, const ChartLayout& l) {
+  const cv::Rect& plot = l.plot;
+  PutText(img, chart.title, cv::Point(ChartLayout::kLeft, 30), 0.7, kInk, 2);
+  for (std::size_t i = 0; i < l.subtitle.size(); ++i) {
+    PutText(img, l.subtitle[i],
+            cv::Point(ChartLayout::kLeft, 58 + ChartLayout::kSubtitleLine * static_cast<int>(i)),
+            ChartLayout::kSubtitleScale, kInk);
   }
   const cv::Size xs = TextSize(chart.x_label, 0.55);
   PutText(img, chart.x_label, cv::Point(plot.x + (plot.width - xs.width) / 2, chart.height - 22),
           0.55, kInk);
-  {  // y label, rotated
-    const cv::Size ys = TextSize(chart.y_label, 0.55);
-    cv::Mat label(ys.height + 10, ys.width + 4, CV_8UC3, kWhite);
-    PutText(label, chart.y_label, cv::Point(2, ys.height + 2), 0.55, kInk);
-    cv::Mat rotated;
-    cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-    const int x0 = 12, y0 = std::max(0, plot.y + (plot.height - rotated.rows) / 2);
-    if (y0 + rotated.rows <= img.rows && x0 + rotated.cols <= img.cols) {
-      rotated.copyTo(img(cv::Rect(x0, y0, rotated.cols, rotated.rows)));
-    }
+  const cv::Size ys = TextSize(chart.y_label, 0.55);
+  cv::Mat label(ys.height + 10, ys.width + 4, CV_8UC3, kWhite);
+  PutText(label, chart.y_label, cv::Point(2, ys.height + 2), 0.55, kInk);
+  cv::Mat rotated;
+  cv::rotate(label, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+  const int x0 = 12, y0 = std::max(0, plot.y + (plot.height - rotated.rows) / 2);
+  if (y0 + rotated.rows <= img.rows && x0 + rotated.cols <= img.cols) {
+    rotated.copyTo(img(cv::Rect(x0, y0, rotated.cols, rotated.rows)));
   }
-  int ly = top + 12;
-  const int lx = plot.x + plot.width + 18;
+}
+
+// The legend right of the plot: each series' line style and name.
+void DrawLegend(cv::Mat& img, const LineChart& chart, const ChartLayout& l) {
+  int ly = l.top + 12;
+  const int lx = l.plot.x + l.plot.width + 18;
   for (std::size_t k = 0; k < chart.series.size(); ++k) {
     const ChartSeries& s = chart.series[k];
-    const cv::Scalar color =
-        kPalette[(s.color >= 0 ? s.color : static_cast<int>(k)) % kPaletteSize];
+    const cv::Scalar color = SeriesColour(s, k);
     if (s.markers_only) {
       cv::circle(img, cv::Point(lx + 17, ly - 5), 4, color, cv::FILLED, cv::LINE_AA);
     } else if (s.dashed) {
@@ -304,7 +359,22 @@ std::string RenderLineChartPng(const LineChart& chart) {
     PutText(img, s.name, cv::Point(lx + 42, ly), 0.45, kInk);
     ly += 22;
   }
+}
 
+}  // namespace
+
+std::string RenderLineChartPng(const LineChart& chart) {
+  const ChartAxes axes = PaddedAxes(chart);
+  cv::Mat img(chart.height, chart.width, CV_8UC3, kWhite);
+  const ChartLayout layout = Layout(chart);
+  DrawGrid(img, chart, axes, layout);
+  DrawReferences(img, chart, axes.y, layout);
+  cv::Mat clip = img(layout.plot);
+  for (std::size_t k = 0; k < chart.series.size(); ++k) {
+    DrawSeries(clip, chart.series[k], SeriesColour(chart.series[k], k), axes, layout);
+  }
+  DrawTitles(img, chart, layout);
+  DrawLegend(img, chart, layout);
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", img, png))
     throw std::runtime_error("chart '" + chart.title + "': PNG encoding failed");

@@ -219,13 +219,9 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
             << ", bench-summary.txt and the charts\n";
 }
 
-}  // namespace
-
-void AddBenchCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "bench",
-      "Time IST queries and the oracle against FCL along the occlusal axis (CSV + PNG charts)");
-  auto args = std::make_shared<BenchArgs>();
+// The jaw pair and the occlusal-axis sweep's options (shared by the modes); returns the
+// --voxel option (the modes have their own defaults when it is not given).
+CLI::Option* AddCaseAndSweepOptions(CLI::App* cmd, BenchArgs* args) {
   auto* case_opt =
       cmd->add_option("--case", args->case_dir, "Case folder with upper.stl and lower.stl");
   auto* synth_opt = cmd->add_option("--synthetic", args->synthetic,
@@ -264,6 +260,11 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 5.0));
   cmd->add_flag("--no-fcl", args->no_fcl, "Skip the FCL peer");
+  return voxel_opt;
+}
+
+// --haptic's options, --out and the memory budget.
+void AddHapticAndOutputOptions(CLI::App* cmd, BenchArgs* args) {
   cmd->add_flag("--haptic", args->haptic,
                 "Replay a seeded trajectory at fixed periods instead (default voxel 0.2 mm)");
   cmd->add_option("--periods", args->periods, "Haptic tick periods, us")
@@ -275,7 +276,10 @@ void AddBenchCommand(CLI::App& app) {
       ->check(CLI::Range(0.01, 600.0));
   cmd->add_option("--out", args->out, "Output folder")->required();
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
-  // --paper and --accuracy.
+}
+
+// --paper's and --accuracy's options.
+void AddPaperAndAccuracyOptions(CLI::App* cmd, BenchArgs* args) {
   auto* paper_opt =
       cmd->add_flag("--paper", args->paper,
                     "Reproduce the paper's figures (voxels, build, sphere volume, query rate)");
@@ -285,7 +289,7 @@ void AddBenchCommand(CLI::App& app) {
   accuracy_opt->excludes(paper_opt);
   auto* mesh_opt =
       cmd->add_option("--mesh", args->mesh, "--paper on one mesh file (no query-rate figure)");
-  mesh_opt->excludes(case_opt)->excludes(synth_opt);
+  mesh_opt->excludes(cmd->get_option("--case"))->excludes(cmd->get_option("--synthetic"));
   cmd->add_flag("--no-sweep", args->no_sweep, "--paper: skip Fig. 10 (the query-rate sweep)");
   cmd->add_option("--sweep-voxel", args->sweep_voxels, "--paper: voxel sizes of Fig. 10, mm")
       ->delimiter(',')
@@ -303,25 +307,41 @@ void AddBenchCommand(CLI::App& app) {
                   "--accuracy: spacing of the ground-truth upper samples, mm")
       ->capture_default_str()
       ->check(MmBetween(0.001, true, 1.0, "a spacing in mm between 0.001 and 1"));
+}
+
+// The checks across options, then the mode.
+void RunBenchMode(const BenchArgs& args, const Given& given) {
+  if (!args.mesh.empty() && !args.paper) {
+    throw UserError("--mesh: only with --paper (the other modes need a jaw pair: --case DIR)");
+  }
+  if (args.case_dir.empty() && args.synthetic == 0 && args.mesh.empty()) {
+    throw UserError(std::string("bench: give --case DIR (with upper.stl and lower.stl)") +
+                    (args.paper ? ", --mesh FILE" : "") + " or --synthetic N");
+  }
+  if (args.offset_range[0] >= args.offset_range[1]) {
+    throw UserError("--offset-range: give lo,hi with lo < hi (mm), e.g. -0.2,1");
+  }
+  if (args.paper) return RunPaperCommand(args, given);
+  if (args.accuracy) return RunAccuracyCommand(args, given);
+  RunBenchCommand(args, given.voxels);
+}
+
+}  // namespace
+
+void AddBenchCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "Time IST queries and the oracle against FCL along the occlusal axis (CSV + PNG charts)");
+  auto args = std::make_shared<BenchArgs>();
+  auto* voxel_opt = AddCaseAndSweepOptions(cmd, args.get());
+  AddHapticAndOutputOptions(cmd, args.get());
+  AddPaperAndAccuracyOptions(cmd, args.get());
   auto* reps_opt = cmd->get_option("--reps");
   auto* offsets_opt = cmd->get_option("--offsets");
   auto* delta_opt = cmd->get_option("--delta");
   cmd->callback([args, voxel_opt, reps_opt, offsets_opt, delta_opt] {
-    const Given given{voxel_opt->count() > 0, reps_opt->count() > 0, offsets_opt->count() > 0,
-                      delta_opt->count() > 0};
-    if (!args->mesh.empty() && !args->paper) {
-      throw UserError("--mesh: only with --paper (the other modes need a jaw pair: --case DIR)");
-    }
-    if (args->case_dir.empty() && args->synthetic == 0 && args->mesh.empty()) {
-      throw UserError(std::string("bench: give --case DIR (with upper.stl and lower.stl)") +
-                      (args->paper ? ", --mesh FILE" : "") + " or --synthetic N");
-    }
-    if (args->offset_range[0] >= args->offset_range[1]) {
-      throw UserError("--offset-range: give lo,hi with lo < hi (mm), e.g. -0.2,1");
-    }
-    if (args->paper) return RunPaperCommand(*args, given);
-    if (args->accuracy) return RunAccuracyCommand(*args, given);
-    RunBenchCommand(*args, given.voxels);
+    RunBenchMode(*args, {voxel_opt->count() > 0, reps_opt->count() > 0, offsets_opt->count() > 0,
+                         delta_opt->count() > 0});
   });
 }
 

@@ -109,19 +109,19 @@ std::vector<Magnitude> ParseMagnitudes(const std::string& text) {
   return out;
 }
 
-ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& options) {
-  ValidateResult result;
-  result.case_name = jaws.name;
-  const double t0 = NowSeconds();
-  const planner::OwnedSchedule schedule =
-      planner::BuildSchedule(jaws.lower_L, jaws.upper_U, options.voxels_mm, options.exact_last);
-  result.build_seconds = NowSeconds() - t0;
-  const planner::OracleStage& last = schedule.stages.back();
-  const Eigen::Isometry3d& X_ref = jaws.X_LU_ref;
-  const std::vector<Eigen::Vector3d> points_U =
-      planner::ArchReferencePoints_U(*jaws.upper_U, X_ref, last.oracle->arch());
-  const Eigen::Vector3d pivot_L = X_ref * points_U[0];
+namespace {
 
+// What every run shares: the schedule's last stage, the reference pose, its reference points
+// in U and its pivot in L, and the request the runs start from.
+struct Setup {
+  const planner::OwnedSchedule* schedule = nullptr;
+  Eigen::Isometry3d X_ref = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> points_U;
+  Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();
+  planner::PlanRequest base;
+};
+
+planner::PlanRequest BaseRequest(const ValidateOptions& options) {
   planner::PlanRequest base;
   base.contact_band_mm = options.contact_band_mm;
   base.max_penetration_mm = options.max_penetration_mm;
@@ -129,9 +129,11 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
   base.max_proposals = 1;
   base.num_global_samples = options.global_samples;
   base.nlopt_local = options.nlopt_local;
-  result.reference = planner::EvaluatePose(last, X_ref, base);
+  return base;
+}
 
-  // The perturbed starts, shared by all solvers.
+// The perturbed starts per magnitude, seeded per (magnitude, start), shared by all solvers.
+std::vector<std::vector<PoseParameters>> Perturbations(const ValidateOptions& options) {
   std::vector<std::vector<PoseParameters>> perturb(options.magnitudes.size());
   for (std::size_t m = 0; m < options.magnitudes.size(); ++m) {
     for (int k = 0; k < options.starts; ++k) {
@@ -143,56 +145,67 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
       perturb[m].push_back(p);
     }
   }
+  return perturb;
+}
+
+// One solver from one perturbed start, within the magnitude plus the bound margins.
+ValidateRun RunJob(const Job& job, const PoseParameters& perturbation, const Setup& setup,
+                   const ValidateOptions& options) {
+  const Magnitude& mag = options.magnitudes[job.magnitude];
+  planner::PlanRequest req = setup.base;
+  req.solver = job.solver;
+  req.X_LU_start = planner::ComposePose(perturbation, setup.pivot_L, setup.X_ref);
+  req.lower_bound.translation_mm = Eigen::Vector3d::Constant(-(mag.mm + options.bound_margin_mm));
+  req.upper_bound.translation_mm = Eigen::Vector3d::Constant(mag.mm + options.bound_margin_mm);
+  req.lower_bound.rotation_deg = Eigen::Vector3d::Constant(-(mag.deg + options.bound_margin_deg));
+  req.upper_bound.rotation_deg = Eigen::Vector3d::Constant(mag.deg + options.bound_margin_deg);
+  const bool multi =
+      job.solver == SolverKind::kCoarseToFine || job.solver == SolverKind::kNloptGlobal;
+  req.num_starts = multi ? options.solver_starts : 1;
+  req.seed = options.seed + static_cast<std::uint32_t>(job.magnitude) * 1009u +
+             static_cast<std::uint32_t>(job.start);
+  const double c0 = ThreadCpuSeconds();
+  const planner::PlanResult plan = planner::Plan(setup.schedule->stages, req);
+  ValidateRun run;
+  run.seconds = ThreadCpuSeconds() - c0;
+  run.solver = job.solver;
+  run.magnitude = mag;
+  run.start = job.start;
+  run.start_error = planner::ComparePoses(req.X_LU_start, setup.X_ref, setup.points_U);
+  const planner::Proposal& best = plan.proposals.front();
+  run.X_LU = best.X_LU;
+  run.error = planner::ComparePoses(best.X_LU, setup.X_ref, setup.points_U);
+  run.found = planner::DecomposePose(best.X_LU, setup.pivot_L, setup.X_ref);
+  run.max_penetration_mm = best.evaluation.max_penetration_mm;
+  run.constrained_penetration_mm = best.evaluation.constrained_penetration_mm;
+  run.contact_area_mm2 = best.evaluation.contact_area_mm2;
+  run.contact_samples = best.evaluation.contact_samples;
+  run.outliers = best.evaluation.outliers.size();
+  run.status = planner::ToString(best.status);
+  run.evaluations = plan.total_evaluations;
+  run.success = run.error.translation_mm <= options.success_mm &&
+                run.error.rotation_deg <= options.success_deg;
+  return run;
+}
+
+// Every (magnitude, start, solver) run, in that order, on options.threads threads (each run
+// single-threaded; the results do not depend on the thread count).
+std::vector<ValidateRun> RunJobs(const Setup& setup, const ValidateOptions& options) {
+  const std::vector<std::vector<PoseParameters>> perturb = Perturbations(options);
   std::vector<Job> jobs;
   for (std::size_t m = 0; m < options.magnitudes.size(); ++m) {
     for (int k = 0; k < options.starts; ++k) {
       for (const SolverKind s : options.solvers) jobs.push_back({s, m, k});
     }
   }
-  result.runs.resize(jobs.size());
+  std::vector<ValidateRun> runs(jobs.size());
   std::atomic<std::size_t> next{0}, done{0};
   std::mutex log_mutex;
   auto worker = [&]() {
     for (std::size_t j = next++; j < jobs.size(); j = next++) {
       const Job& job = jobs[j];
-      const Magnitude& mag = options.magnitudes[job.magnitude];
-      planner::PlanRequest req = base;
-      req.solver = job.solver;
-      req.X_LU_start = planner::ComposePose(
-          perturb[job.magnitude][static_cast<std::size_t>(job.start)], pivot_L, X_ref);
-      req.lower_bound.translation_mm =
-          Eigen::Vector3d::Constant(-(mag.mm + options.bound_margin_mm));
-      req.upper_bound.translation_mm = Eigen::Vector3d::Constant(mag.mm + options.bound_margin_mm);
-      req.lower_bound.rotation_deg =
-          Eigen::Vector3d::Constant(-(mag.deg + options.bound_margin_deg));
-      req.upper_bound.rotation_deg = Eigen::Vector3d::Constant(mag.deg + options.bound_margin_deg);
-      const bool multi =
-          job.solver == SolverKind::kCoarseToFine || job.solver == SolverKind::kNloptGlobal;
-      req.num_starts = multi ? options.solver_starts : 1;
-      req.seed = options.seed + static_cast<std::uint32_t>(job.magnitude) * 1009u +
-                 static_cast<std::uint32_t>(job.start);
-      const double c0 = ThreadCpuSeconds();
-      const planner::PlanResult plan = planner::Plan(schedule.stages, req);
-      ValidateRun run;
-      run.seconds = ThreadCpuSeconds() - c0;
-      run.solver = job.solver;
-      run.magnitude = mag;
-      run.start = job.start;
-      run.start_error = planner::ComparePoses(req.X_LU_start, X_ref, points_U);
-      const planner::Proposal& best = plan.proposals.front();
-      run.X_LU = best.X_LU;
-      run.error = planner::ComparePoses(best.X_LU, X_ref, points_U);
-      run.found = planner::DecomposePose(best.X_LU, pivot_L, X_ref);
-      run.max_penetration_mm = best.evaluation.max_penetration_mm;
-      run.constrained_penetration_mm = best.evaluation.constrained_penetration_mm;
-      run.contact_area_mm2 = best.evaluation.contact_area_mm2;
-      run.contact_samples = best.evaluation.contact_samples;
-      run.outliers = best.evaluation.outliers.size();
-      run.status = planner::ToString(best.status);
-      run.evaluations = plan.total_evaluations;
-      run.success = run.error.translation_mm <= options.success_mm &&
-                    run.error.rotation_deg <= options.success_deg;
-      result.runs[j] = run;
+      runs[j] =
+          RunJob(job, perturb[job.magnitude][static_cast<std::size_t>(job.start)], setup, options);
       const std::size_t n = ++done;
       if (options.log && (n % 10 == 0 || n == jobs.size())) {
         std::lock_guard<std::mutex> lock(log_mutex);
@@ -206,57 +219,88 @@ ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& opt
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  return runs;
+}
 
-  // Summaries and the consensus (medoid) per solver and magnitude.
+// The summary of one solver and magnitude, and each run's distance from their consensus.
+ValidateSummary SummarizeGroup(const std::vector<ValidateRun*>& group, SolverKind solver,
+                               const Magnitude& magnitude,
+                               const std::vector<Eigen::Vector3d>& points_U,
+                               const ValidateOptions& options) {
+  const std::size_t medoid =
+      Medoid(std::vector<const ValidateRun*>(group.begin(), group.end()), points_U);
+  ValidateSummary row;
+  row.solver = solver;
+  row.magnitude = magnitude;
+  row.runs = static_cast<int>(group.size());
+  std::vector<double> em, ed, sec, cons;
+  int ok = 0, near = 0;
+  for (ValidateRun* r : group) {
+    const PoseError c = planner::ComparePoses(r->X_LU, group[medoid]->X_LU, points_U);
+    r->consensus_mm = c.translation_mm;
+    cons.push_back(c.translation_mm);
+    near += c.translation_mm <= options.success_mm && c.rotation_deg <= options.success_deg ? 1 : 0;
+    em.push_back(r->error.translation_mm);
+    ed.push_back(r->error.rotation_deg);
+    sec.push_back(r->seconds);
+    ok += r->success ? 1 : 0;
+    row.worst_penetration_mm = std::max(row.worst_penetration_mm, r->constrained_penetration_mm);
+    row.worst_max_penetration_mm = std::max(row.worst_max_penetration_mm, r->max_penetration_mm);
+  }
+  const double n = static_cast<double>(group.size());
+  row.success_rate = ok / n;
+  row.within_consensus = near / n;
+  row.median_err_mm = NearestRankPercentile(em, 0.5, 0.0);
+  row.p95_err_mm = NearestRankPercentile(em, 0.95, 0.0);
+  row.median_err_deg = NearestRankPercentile(ed, 0.5, 0.0);
+  row.p95_err_deg = NearestRankPercentile(ed, 0.95, 0.0);
+  row.median_seconds = NearestRankPercentile(sec, 0.5, 0.0);
+  row.median_consensus_mm = NearestRankPercentile(cons, 0.5, 0.0);
+  row.medoid_error = group[medoid]->error;
+  row.medoid_contact_mm2 = group[medoid]->contact_area_mm2;
+  return row;
+}
+
+// Summaries and the consensus (medoid) per solver and magnitude.
+std::vector<ValidateSummary> Summaries(std::vector<ValidateRun>* runs,
+                                       const std::vector<Eigen::Vector3d>& points_U,
+                                       const ValidateOptions& options) {
+  std::vector<ValidateSummary> summary;
   for (const SolverKind s : options.solvers) {
-    for (std::size_t m = 0; m < options.magnitudes.size(); ++m) {
+    for (const Magnitude& magnitude : options.magnitudes) {
       std::vector<ValidateRun*> group;
-      for (auto& r : result.runs) {
-        if (r.solver == s && r.magnitude.mm == options.magnitudes[m].mm &&
-            r.magnitude.deg == options.magnitudes[m].deg) {
+      for (auto& r : *runs) {
+        if (r.solver == s && r.magnitude.mm == magnitude.mm && r.magnitude.deg == magnitude.deg) {
           group.push_back(&r);
         }
       }
-      if (group.empty()) continue;
-      const std::size_t medoid =
-          Medoid(std::vector<const ValidateRun*>(group.begin(), group.end()), points_U);
-      ValidateSummary row;
-      row.solver = s;
-      row.magnitude = options.magnitudes[m];
-      row.runs = static_cast<int>(group.size());
-      std::vector<double> em, ed, sec, cons;
-      int ok = 0, near = 0;
-      for (ValidateRun* r : group) {
-        const PoseError c = planner::ComparePoses(r->X_LU, group[medoid]->X_LU, points_U);
-        r->consensus_mm = c.translation_mm;
-        cons.push_back(c.translation_mm);
-        near +=
-            c.translation_mm <= options.success_mm && c.rotation_deg <= options.success_deg ? 1 : 0;
-        em.push_back(r->error.translation_mm);
-        ed.push_back(r->error.rotation_deg);
-        sec.push_back(r->seconds);
-        ok += r->success ? 1 : 0;
-        row.worst_penetration_mm =
-            std::max(row.worst_penetration_mm, r->constrained_penetration_mm);
-        row.worst_max_penetration_mm =
-            std::max(row.worst_max_penetration_mm, r->max_penetration_mm);
-      }
-      const double n = static_cast<double>(group.size());
-      row.success_rate = ok / n;
-      row.within_consensus = near / n;
-      row.median_err_mm = NearestRankPercentile(em, 0.5, 0.0);
-      row.p95_err_mm = NearestRankPercentile(em, 0.95, 0.0);
-      row.median_err_deg = NearestRankPercentile(ed, 0.5, 0.0);
-      row.p95_err_deg = NearestRankPercentile(ed, 0.95, 0.0);
-      row.median_seconds = NearestRankPercentile(sec, 0.5, 0.0);
-      row.median_consensus_mm = NearestRankPercentile(cons, 0.5, 0.0);
-      row.medoid_error = group[medoid]->error;
-      row.medoid_contact_mm2 = group[medoid]->contact_area_mm2;
-      result.summary.push_back(row);
+      if (!group.empty()) summary.push_back(SummarizeGroup(group, s, magnitude, points_U, options));
     }
   }
-  result.reference_check =
-      CheckReference(result.runs, last, X_ref, pivot_L, points_U, base, options);
+  return summary;
+}
+
+}  // namespace
+
+ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& options) {
+  ValidateResult result;
+  result.case_name = jaws.name;
+  const double t0 = NowSeconds();
+  const planner::OwnedSchedule schedule =
+      planner::BuildSchedule(jaws.lower_L, jaws.upper_U, options.voxels_mm, options.exact_last);
+  result.build_seconds = NowSeconds() - t0;
+  const planner::OracleStage& last = schedule.stages.back();
+  Setup setup;
+  setup.schedule = &schedule;
+  setup.X_ref = jaws.X_LU_ref;
+  setup.points_U = planner::ArchReferencePoints_U(*jaws.upper_U, setup.X_ref, last.oracle->arch());
+  setup.pivot_L = setup.X_ref * setup.points_U[0];
+  setup.base = BaseRequest(options);
+  result.reference = planner::EvaluatePose(last, setup.X_ref, setup.base);
+  result.runs = RunJobs(setup, options);
+  result.summary = Summaries(&result.runs, setup.points_U, options);
+  result.reference_check = CheckReference(result.runs, last, setup.X_ref, setup.pivot_L,
+                                          setup.points_U, setup.base, options);
   return result;
 }
 

@@ -174,10 +174,13 @@ std::string ValidateSummaryText(const ValidateResult& result, const ValidateOpti
   return s.str();
 }
 
-std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateResult& result,
-                                                                const ValidateOptions& options,
-                                                                const std::string& subtitle) {
-  std::vector<std::pair<std::string, std::string>> out;
+namespace {
+
+// Stability (success rate, and the share within the bar of the consensus, dashed) and error
+// (median, and the 95th percentile dashed) against the magnitude, one colour per solver.
+std::pair<LineChart, LineChart> MagnitudeCharts(const ValidateResult& result,
+                                                const ValidateOptions& options,
+                                                const std::string& subtitle) {
   std::vector<std::string> labels;
   for (const Magnitude& m : options.magnitudes) labels.push_back(MagnitudeLabel(m));
   auto index_of = [&](const Magnitude& m) {
@@ -189,7 +192,6 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   };
   LineChart stability;
   stability.title = "Stability: success rate against start perturbation (" + result.case_name + ")";
-  stability.subtitle = subtitle;
   stability.x_label = "perturbation of the start (translation / rotation, at most)";
   stability.y_label = "success rate, % of runs";
   stability.subtitle = subtitle + " | success: within " + Fixed(options.success_mm, 1) +
@@ -199,7 +201,6 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   stability.y_include = {0.0, 100.0};
   LineChart error = stability;
   error.y_include.clear();
-  error.subtitle = subtitle;
   error.title = "Pose error against start perturbation (" + result.case_name + ")";
   error.y_label = "translation error, mm (log)";
   error.subtitle = subtitle + " | solid: median, dashed: 95th percentile";
@@ -229,9 +230,12 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
     error.series.push_back(p95);
     ++color;
   }
-  out.emplace_back("stability.png", RenderLineChartPng(stability));
-  out.emplace_back("error.png", RenderLineChartPng(error));
+  return {stability, error};
+}
 
+// Thread CPU time against the pose error of every run, one colour per solver.
+LineChart TimeErrorChart(const ValidateResult& result, const ValidateOptions& options,
+                         const std::string& subtitle) {
   LineChart scatter;
   scatter.title = "Time against pose error, every run (" + result.case_name + ")";
   scatter.subtitle = subtitle;
@@ -239,7 +243,7 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
   scatter.y_label = "translation error against the reference, mm (log)";
   scatter.log_x = scatter.log_y = true;
   scatter.references = {{options.success_mm, "success bar"}};
-  color = 0;
+  int color = 0;
   for (const planner::SolverKind s : options.solvers) {
     ChartSeries pts{planner::ToString(s), {}, {}, color++, false};
     pts.markers_only = true;
@@ -250,36 +254,54 @@ std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateRe
     }
     scatter.series.push_back(pts);
   }
-  out.emplace_back("time-vs-error.png", RenderLineChartPng(scatter));
+  return scatter;
+}
 
-  // The reference check: contact along the path from the reference to the consensus, each pose
-  // labelled with its outlier-robust penetration; the poses dominating the reference marked.
+// The reference check: contact along the path from the reference to the consensus, each pose
+// labelled with its outlier-robust penetration; the poses dominating the reference marked.
+LineChart ReferencePathChart(const ValidateResult& result, const ValidateOptions& options,
+                             const std::string& subtitle) {
   const ReferenceCheck& check = result.reference_check;
-  if (!check.path.empty()) {
-    LineChart path;
-    path.title = "Reference check: from the reference to the consensus of the runs (" +
-                 result.case_name + ")";
-    path.subtitle = subtitle + " | labels: outlier-robust penetration, um (limit " +
-                    Fixed(1000.0 * options.max_penetration_mm, 0) +
-                    "); dominates: more contact, no deeper penetration than the reference";
-    path.x_label = "displacement from the reference pose, mm (largest of the reference points)";
-    path.y_label = "contact area within the band, mm^2";
-    path.y_include = {0.0};
-    ChartSeries contact{"contact along the path", {}, {}, 0, false};
-    ChartSeries dominating{"dominates the reference", {}, {}, 1, false};
-    dominating.markers_only = true;
-    for (const planner::PathPoint& p : check.path) {
-      contact.x.push_back(p.from_start.translation_mm);
-      contact.y.push_back(p.evaluation.contact_area_mm2);
-      contact.labels.push_back(Fixed(1000.0 * p.evaluation.constrained_penetration_mm, 0));
-      if (planner::Dominates(p.evaluation, check.path.front().evaluation)) {
-        dominating.x.push_back(p.from_start.translation_mm);
-        dominating.y.push_back(p.evaluation.contact_area_mm2);
-      }
+  LineChart path;
+  path.title =
+      "Reference check: from the reference to the consensus of the runs (" + result.case_name + ")";
+  path.subtitle = subtitle + " | labels: outlier-robust penetration, um (limit " +
+                  Fixed(1000.0 * options.max_penetration_mm, 0) +
+                  "); dominates: more contact, no deeper penetration than the reference";
+  path.x_label = "displacement from the reference pose, mm (largest of the reference points)";
+  path.y_label = "contact area within the band, mm^2";
+  path.y_include = {0.0};
+  ChartSeries contact{"contact along the path", {}, {}, 0, false};
+  ChartSeries dominating{"dominates the reference", {}, {}, 1, false};
+  dominating.markers_only = true;
+  for (const planner::PathPoint& p : check.path) {
+    contact.x.push_back(p.from_start.translation_mm);
+    contact.y.push_back(p.evaluation.contact_area_mm2);
+    contact.labels.push_back(Fixed(1000.0 * p.evaluation.constrained_penetration_mm, 0));
+    if (planner::Dominates(p.evaluation, check.path.front().evaluation)) {
+      dominating.x.push_back(p.from_start.translation_mm);
+      dominating.y.push_back(p.evaluation.contact_area_mm2);
     }
-    path.series.push_back(contact);
-    if (!dominating.x.empty()) path.series.push_back(dominating);
-    out.emplace_back("reference-path.png", RenderLineChartPng(path));
+  }
+  path.series.push_back(contact);
+  if (!dominating.x.empty()) path.series.push_back(dominating);
+  return path;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> ValidateCharts(const ValidateResult& result,
+                                                                const ValidateOptions& options,
+                                                                const std::string& subtitle) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const auto [stability, error] = MagnitudeCharts(result, options, subtitle);
+  out.emplace_back("stability.png", RenderLineChartPng(stability));
+  out.emplace_back("error.png", RenderLineChartPng(error));
+  out.emplace_back("time-vs-error.png",
+                   RenderLineChartPng(TimeErrorChart(result, options, subtitle)));
+  if (!result.reference_check.path.empty()) {
+    out.emplace_back("reference-path.png",
+                     RenderLineChartPng(ReferencePathChart(result, options, subtitle)));
   }
   return out;
 }
