@@ -1,4 +1,4 @@
-// Tests of the FCL peer adapter (app/src/fcl_peer.h): boxes and a sphere with known answers,
+// Tests of the FCL peer adapter (app/bench/fcl_peer.h): boxes and a sphere with known answers,
 // pose handling (moving the upper jaw by X_LU equals moving its mesh), both BV types, and the
 // real registered bite when the shared data folder is present. Every test skips when occlude
 // was built without FCL.

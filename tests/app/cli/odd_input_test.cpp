@@ -1,4 +1,4 @@
-// Odd but valid inputs of issue 8 through the real commands: each runs to the
+// Odd but valid inputs (README, "Reliability") through the real commands: each runs to the
 // end (exit 0, the command's outputs written), with a warning where it helps
 // the user: a single triangle; jaws in metres (a warning naming units = "m",
 // and none once the unit is given); jaws 200 mm apart (they may not share a
@@ -141,7 +141,7 @@ TEST_P(OddInputTest, RunsToTheEndWithTheHelpfulWarning) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue8, OddInputTest, ::testing::ValuesIn(AllOddRuns()),
+INSTANTIATE_TEST_SUITE_P(EveryCommand, OddInputTest, ::testing::ValuesIn(AllOddRuns()),
                          [](const ::testing::TestParamInfo<OddRun>& param_info) {
                            return NamePart(std::string(param_info.param.command.name) + "_" +
                                            param_info.param.input.name);

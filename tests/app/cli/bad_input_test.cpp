@@ -1,4 +1,4 @@
-// The bad-input suite of issue 8 through the real commands: every bad mesh,
+// The bad-input suite (README, "Reliability") through the real commands: every bad mesh,
 // config, pose file and output folder, run through every command that reads
 // that kind of input (input_suite.h lists the commands), must give exactly one
 // error line ("occlude: error: ...", the last line of the output) that names
@@ -356,7 +356,7 @@ TEST_P(BadInputTest, OneErrorLineNamingItNonZeroExitNoFileWritten) {
   EXPECT_EQ(FilesBelow(tmp.path()), before) << "a failed run wrote a file";
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue8, BadInputTest, ::testing::ValuesIn(AllBadRuns()),
+INSTANTIATE_TEST_SUITE_P(EveryCommand, BadInputTest, ::testing::ValuesIn(AllBadRuns()),
                          [](const ::testing::TestParamInfo<BadRun>& param_info) {
                            return NamePart(std::string(param_info.param.command.name) + "_" +
                                            param_info.param.input.name);

@@ -1,7 +1,7 @@
 // `occlude validate` on the smallest synthetic pair: the magnitudes parser, one run per
 // solver, magnitude and start with the documented columns, the closing rows start at the
 // reference, easy perturbations return within the success bar, the consensus statistics,
-// the charts; and the command itself (files written, bad options rejected with one line).
+// the charts. (The command: tests/app/cli/cmd_validate_test.cpp.)
 #include "validate/validate.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,6 @@
 
 #include "base/user_error.h"
 #include "occlude/io/synthetic_jaws.h"
-#include "run_occlude.h"
 #include "test_common.h"
 
 namespace occlude::app {
@@ -197,35 +196,6 @@ TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
   EXPECT_LT((c.X_LU_consensus.translation() - X_bite.translation()).norm(), 0.15);
   const std::string text = ValidateSummaryText(r, o, "m");
   EXPECT_NE(text.find("DOMINATED"), std::string::npos) << text;
-}
-
-TEST(ValidateCommandTest, WritesItsFilesAndRejectsBadOptions) {
-  test::TempDir tmp;
-  const test::CommandRun ok = test::Occlude(
-      "validate --synthetic 5000 --solver ceres --starts 1 --magnitudes 0.5:1 "
-      "--voxels 0.5 --out " +
-      (tmp / "v").string());
-  ASSERT_EQ(ok.exit_code, 0) << ok.output;
-  for (const char* f :
-       {"validate.csv", "validate-summary.csv", "validate-summary.txt", "stability.png",
-        "error.png", "time-vs-error.png", "reference-path.csv", "reference-path.png"}) {
-    EXPECT_TRUE(std::filesystem::exists(tmp / "v" / f)) << f;
-  }
-  const std::vector<std::pair<std::string, std::string>> bad = {
-      {"--synthetic 5000 --magnitudes 1-2", "--magnitudes"},
-      {"--synthetic 5000 --solver simplex", "--solver"},
-      {"--case " + (tmp / "missing").string(), "missing"},
-      {"--synthetic 5000 --voxels 0", "--voxels"},
-      {"--synthetic 100", "triangles"}};
-  for (const auto& [args, expected] : bad) {
-    const test::CommandRun r =
-        test::Occlude("validate " + args + " --out " + (tmp / "bad").string());
-    EXPECT_NE(r.exit_code, 0) << args;
-    // One line of error (CLI11 adds a "Run with --help" hint for option errors).
-    EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << args << ": " << r.output;
-    EXPECT_NE(r.output.find(expected), std::string::npos) << args << ": " << r.output;
-    EXPECT_FALSE(std::filesystem::exists(tmp / "bad" / "validate.csv")) << args;
-  }
 }
 
 }  // namespace

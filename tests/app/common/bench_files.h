@@ -1,7 +1,6 @@
-// Helpers for the tests of `occlude bench --paper` and `--accuracy`: a tiny
-// analytic case folder (a sphere resting on a box), and reading what the modes
-// write: text files, CSV rows as column -> cell maps ('#' lines are comments),
-// and the size of a PNG.
+// Helpers for the tests of the benchmarks and the commands that write files: a tiny analytic
+// case folder (a sphere resting on a box), and reading what they write: text files, CSV rows
+// as column -> cell maps ('#' lines are comments), and the size of a PNG.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -92,9 +91,8 @@ inline std::vector<CsvRow> ReadCsvRows(const std::filesystem::path& file,
 /// The number in `column` of a row.
 inline double Value(const CsvRow& r, const std::string& column) { return std::stod(r.at(column)); }
 
-/// Width and height from a PNG's IHDR chunk; {0, 0} when not a PNG.
-inline std::pair<int, int> PngFileSize(const std::filesystem::path& file) {
-  const std::string bytes = ReadFileText(file);
+/// Width and height from the IHDR chunk of PNG bytes; {0, 0} when not a PNG.
+inline std::pair<int, int> PngSize(const std::string& bytes) {
   const std::string signature = "\x89PNG\r\n\x1a\n";
   if (bytes.size() < 24 || bytes.compare(0, 8, signature) != 0 ||
       bytes.compare(12, 4, "IHDR") != 0) {
@@ -106,6 +104,11 @@ inline std::pair<int, int> PngFileSize(const std::filesystem::path& file) {
     return v;
   };
   return {be32(16), be32(20)};
+}
+
+/// The same of a PNG file.
+inline std::pair<int, int> PngFileSize(const std::filesystem::path& file) {
+  return PngSize(ReadFileText(file));
 }
 
 }  // namespace occlude::test
