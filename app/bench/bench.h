@@ -19,14 +19,13 @@
 #include "base/timing.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/triangle_mesh.h"
+#include "session/jaw_pair.h"
 
 namespace occlude::app {
 
-/// A jaw pair to benchmark: lower in L, upper in its own frame U, the bite X_LU_ref.
-struct BenchCase {
-  std::string name;
-  std::shared_ptr<const io::TriangleMesh> lower_L, upper_U;
-  Eigen::Isometry3d X_LU_ref = Eigen::Isometry3d::Identity();
+/// A jaw pair to benchmark (session/jaw_pair.h: lower in L, upper in U, the bite X_LU_ref) and
+/// the occlusal axis the sweeps move the upper along.
+struct BenchCase : JawPair {
   Eigen::Vector3d axis_L = Eigen::Vector3d::UnitY();  ///< occlusal axis, lower -> upper, unit
 };
 

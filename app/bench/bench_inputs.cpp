@@ -9,8 +9,7 @@
 
 #include "base/user_error.h"
 #include "occlude/collision/oracle.h"
-#include "occlude/io/mesh_io.h"
-#include "session/synthetic_case.h"
+#include "session/jaw_pair.h"
 
 namespace occlude::app {
 namespace {
@@ -47,45 +46,15 @@ Eigen::Vector3d BenchAxis(const std::string& text, const io::TriangleMesh& lower
   return negative ? Eigen::Vector3d(-axis) : axis;
 }
 
-std::shared_ptr<const io::TriangleMesh> LoadBenchMesh(const std::filesystem::path& file,
-                                                      const std::string& what) {
-  if (!std::filesystem::exists(file)) throw UserError(file.string() + ": not found (" + what + ")");
-  try {
-    io::LoadReport report;
-    auto mesh = std::make_shared<io::TriangleMesh>(io::LoadMesh(file, {}, &report));
-    for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
-    return mesh;
-  } catch (const io::MeshError& e) {
-    throw UserError(e.what());
-  }
-}
-
 BenchCase LoadBenchCase(const std::string& case_dir, std::size_t synthetic, std::uint32_t seed,
                         const std::string& axis) {
-  BenchCase bc;
   if (!case_dir.empty()) {
-    const std::filesystem::path dir(case_dir);
-    if (!std::filesystem::is_directory(dir)) {
-      throw UserError("--case: '" + case_dir +
-                      "' is not a folder (it must hold upper.stl and lower.stl)");
-    }
-    bc.name =
-        dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-    const std::string what = "--case needs a folder with upper.stl and lower.stl";
-    bc.lower_L = LoadBenchMesh(dir / "lower.stl", what);
-    bc.upper_U = LoadBenchMesh(dir / "upper.stl", what);  // given in L at the bite: U = L
-    bc.axis_L = BenchAxis(axis, *bc.lower_L, *bc.upper_U);
+    BenchCase bc{LoadCaseFolder(case_dir, "--case needs a folder with upper.stl and lower.stl")};
+    bc.axis_L = BenchAxis(axis, *bc.lower_L, *bc.upper_U);  // given in L at the bite: U = L
     return bc;
   }
-  io::SyntheticJawOptions options;
-  options.triangles_per_jaw = synthetic;
-  options.seed = seed;
-  const io::SyntheticJawPair jaws = MakeSyntheticOrExplain(options);
-  bc.name = "synthetic-" + std::to_string(synthetic);
-  bc.lower_L = std::make_shared<io::TriangleMesh>(jaws.lower_L);
-  bc.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
-  bc.X_LU_ref = jaws.X_LU;
-  bc.axis_L = axis == "auto" ? jaws.occlusal_axis_L
+  BenchCase bc{SyntheticJawPair(synthetic, seed)};
+  bc.axis_L = axis == "auto" ? *bc.occlusal_axis_L
                              : BenchAxis(axis, *bc.lower_L, bc.upper_U->Transformed(bc.X_LU_ref));
   return bc;
 }

@@ -18,10 +18,6 @@ namespace occlude::app {
 Eigen::Vector3d BenchAxis(const std::string& text, const io::TriangleMesh& lower_L,
                           const io::TriangleMesh& upper_L);
 
-/// A mesh file; UserError naming the file (and `what` it is for) when missing or unreadable.
-std::shared_ptr<const io::TriangleMesh> LoadBenchMesh(const std::filesystem::path& file,
-                                                      const std::string& what);
-
 /// The pair of `case_dir` (upper.stl and lower.stl in one frame at the bite) or,
 /// when case_dir is empty, the synthetic pair of `synthetic` triangles per jaw.
 BenchCase LoadBenchCase(const std::string& case_dir, std::size_t synthetic, std::uint32_t seed,

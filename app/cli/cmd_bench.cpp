@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "occlude/collision/oracle.h"
+#include "session/jaw_pair.h"
 #include "session/memory_guard.h"
 
 namespace occlude::app {
@@ -102,7 +103,7 @@ void RunPaperCommand(const BenchArgs& args, const Given& given) {
   PaperResult result;
   if (!args.mesh.empty()) {
     const std::filesystem::path file(args.mesh);
-    result = RunPaper(LoadBenchMesh(file, "--mesh needs a mesh file"), file.stem().string(),
+    result = RunPaper(LoadExistingMesh(file, "--mesh needs a mesh file"), file.stem().string(),
                       nullptr, options);
   } else {
     const BenchCase bc = LoadBenchCase(args.case_dir, args.synthetic, args.seed, args.axis);

@@ -15,6 +15,7 @@
 #include "occlude/collision/collide.h"
 #include "occlude/io/mesh_io.h"
 #include "session/jaw_checks.h"
+#include "session/jaw_pair.h"
 #include "session/memory_guard.h"
 #include "session/tree_report.h"
 
@@ -57,21 +58,11 @@ std::string FormatMm(double mm) {
   return s.str();
 }
 
-std::shared_ptr<io::TriangleMesh> LoadJawOrExplain(const std::vector<std::string>& files,
-                                                   io::LengthUnit unit) {
-  io::LoadOptions options;
-  options.unit = unit;
-  io::LoadReport report;
-  std::vector<std::filesystem::path> paths(files.begin(), files.end());
-  try {
-    auto mesh = std::make_shared<io::TriangleMesh>(paths.size() == 1
-                                                       ? io::LoadMesh(paths[0], options, &report)
-                                                       : io::LoadJawParts(paths, options, &report));
-    for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
-    return mesh;
-  } catch (const io::MeshError& e) {
-    throw UserError(e.what());
-  }
+// The jaw's files: one mesh file, or several part files.
+std::shared_ptr<const io::TriangleMesh> LoadJawFiles(const std::vector<std::string>& files,
+                                                     io::LengthUnit unit) {
+  const std::vector<std::filesystem::path> paths(files.begin(), files.end());
+  return LoadJaw(paths, paths.size() != 1, unit);
 }
 
 void RunCollide(const CollideArgs& args) {
@@ -81,8 +72,8 @@ void RunCollide(const CollideArgs& args) {
   if (!args.out.empty()) PrepareOutputDir(args.out);
   const Eigen::Isometry3d X_LU =
       args.pose.empty() ? Eigen::Isometry3d::Identity() : ReadPoseFile(args.pose);
-  const auto lower_mesh = LoadJawOrExplain(args.lower, *unit);
-  const auto upper_mesh = LoadJawOrExplain(args.upper, *unit);
+  const auto lower_mesh = LoadJawFiles(args.lower, *unit);
+  const auto upper_mesh = LoadJawFiles(args.upper, *unit);
   collision::SphereTreeOptions options;
   options.voxelize.voxel_size_mm = args.voxel_mm;
   const std::string lower_name = "lower jaw (" + JawFilesName(args.lower) + ")";

@@ -58,8 +58,8 @@ void RunValidateCommand(const ValidateArgs& args) {
   options.max_penetration_mm = args.max_penetration_mm;
   options.log = &std::cerr;
   PrepareOutputDir(args.out);
-  const JawPairCase jaws = args.case_dir.empty() ? SyntheticJawPairCase(args.synthetic, args.seed)
-                                                 : LoadCaseFolder(args.case_dir);
+  const JawPair jaws = args.case_dir.empty() ? SyntheticJawPair(args.synthetic, args.seed)
+                                             : LoadCaseFolder(args.case_dir);
   const std::string machine = MachineLine();
   std::cerr << "validate: case " << jaws.name << ", " << options.solvers.size() << " solvers x "
             << options.magnitudes.size() << " magnitudes x " << options.starts << " starts; "

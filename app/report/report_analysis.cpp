@@ -97,7 +97,7 @@ int LowerToothAt(const collision::NarrowBandSdf& lower_field, const io::Triangle
   return lower_field.Exact(p_L, reach, &s) ? ToothOfTriangle(lower, s.triangle) : 0;
 }
 
-std::vector<ToothRow> ToothRows(const CaseJaws& jaws) {
+std::vector<ToothRow> ToothRows(const JawPair& jaws) {
   std::vector<ToothRow> rows;
   for (const auto* mesh : {jaws.upper_U.get(), jaws.lower_L.get()}) {
     for (const auto& part : mesh->parts) {
@@ -123,7 +123,7 @@ ToothRow* FindRow(std::vector<ToothRow>* rows, int tooth, bool upper) {
 }
 
 // Spots and per-tooth totals from the oracle's contact and penetration samples.
-void Attribute(const CaseJaws& jaws, const collision::NarrowBandSdf& lower_field,
+void Attribute(const JawPair& jaws, const collision::NarrowBandSdf& lower_field,
                ReportAnalysis* a) {
   const auto& contacts = a->oracle.contacts;
   std::vector<Eigen::Vector3d> points;
@@ -227,7 +227,7 @@ std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, doubl
 
 ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) {
   const CaseConfig& config = session.config();
-  const CaseJaws& jaws = session.jaws();
+  const JawPair& jaws = session.jaws();
   ReportAnalysis a;
   a.X_LU = X_LU;
   a.voxel_mm = config.VoxelSizeMm();

@@ -17,8 +17,8 @@
 #include "config/case_config.h"
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/oracle.h"
-#include "session/case_jaws.h"
 #include "session/case_session.h"
+#include "session/jaw_pair.h"
 
 namespace occlude::app {
 

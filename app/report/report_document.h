@@ -9,13 +9,13 @@
 
 #include "config/case_config.h"
 #include "report/report_analysis.h"
-#include "session/case_jaws.h"
+#include "session/jaw_pair.h"
 
 namespace occlude::app {
 
 struct ReportInputs {
   const CaseConfig* config = nullptr;
-  const CaseJaws* jaws = nullptr;
+  const JawPair* jaws = nullptr;
   const ReportAnalysis* analysis = nullptr;
   std::string pose_source;  ///< "start pose of the config" or the pose file
   /// (title, PNG bytes, file name) of each picture, in page order.

@@ -176,7 +176,7 @@ void SideLabels(cv::Mat* m, const render::OrthoView& v, const collision::ArchFra
 
 }  // namespace
 
-MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis& a,
+MapImage RenderContactMap(Arch arch, const JawPair& jaws, const ReportAnalysis& a,
                           const render::MapScale& scale, int width_px) {
   const bool upper = arch == Arch::kUpper;
   const io::TriangleMesh& mesh = upper ? *jaws.upper_U : *jaws.lower_L;
@@ -232,7 +232,7 @@ MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis&
   return out;
 }
 
-render::Image RenderSideView(SideView side, const CaseJaws& jaws, const ReportAnalysis& a,
+render::Image RenderSideView(SideView side, const JawPair& jaws, const ReportAnalysis& a,
                              const render::MapScale& scale, int width_px) {
   std::vector<Eigen::Vector3d> pts;
   AddPoints(*jaws.lower_L, Eigen::Isometry3d::Identity(), &pts);

@@ -10,7 +10,7 @@
 #include "report/render_raster.h"
 #include "report/report_analysis.h"
 #include "report/report_colours.h"
-#include "session/case_jaws.h"
+#include "session/jaw_pair.h"
 
 namespace occlude::app {
 
@@ -24,12 +24,12 @@ struct MapImage {
 };
 
 /// Occlusal contact map of one arch at analysis.X_LU. `width_px` is the image width.
-MapImage RenderContactMap(Arch arch, const CaseJaws& jaws, const ReportAnalysis& analysis,
+MapImage RenderContactMap(Arch arch, const JawPair& jaws, const ReportAnalysis& analysis,
                           const render::MapScale& scale, int width_px);
 
 /// Both jaws at the pose from the front or the patient's right, shaded, near-contact
 /// surfaces in the map colours.
-render::Image RenderSideView(SideView side, const CaseJaws& jaws, const ReportAnalysis& analysis,
+render::Image RenderSideView(SideView side, const JawPair& jaws, const ReportAnalysis& analysis,
                              const render::MapScale& scale, int width_px);
 
 /// PNG file contents of an image. Throws std::runtime_error if encoding fails.

@@ -16,7 +16,7 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
                             const std::string& pose_source, const std::string& search_json,
                             const std::string& search_html) {
   const CaseConfig& config = session.config();
-  const CaseJaws& jaws = session.jaws();
+  const JawPair& jaws = session.jaws();
   const double t0 = NowSeconds();
   const render::MapScale scale{config.report.map_max_mm, config.contact_band_mm,
                                config.report.map_penetration_from_mm};

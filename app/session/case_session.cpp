@@ -41,6 +41,19 @@ std::string Mm(double v) {
 
 }  // namespace
 
+collision::ArchFrame CaseArchFrame(const CaseConfig& config, const io::TriangleMesh& lower_L,
+                                   const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU) {
+  collision::ArchFrame f = collision::EstimateArchFrame(lower_L, upper_U.Transformed(X_LU));
+  if (!config.up_axis_L) return f;
+  const Eigen::Vector3d up = *config.up_axis_L;
+  Eigen::Vector3d anterior = f.anterior_L - f.anterior_L.dot(up) * up;
+  if (anterior.norm() < 1e-6) anterior = up.unitOrthogonal();
+  f.occlusal_L = up;
+  f.anterior_L = anterior.normalized();
+  f.lateral_L = f.occlusal_L.cross(f.anterior_L).normalized();
+  return f;
+}
+
 std::vector<double> ScheduleVoxels(double finest_mm) {
   if (finest_mm < 0.4) return {0.8, 0.4, finest_mm};
   return {std::max(0.8, 2.0 * finest_mm), finest_mm};
@@ -50,7 +63,7 @@ std::vector<double> ScheduleVoxels(const CaseConfig& config) {
   return ScheduleVoxels(config.VoxelSizeMm());
 }
 
-collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const JawPair& jaws,
                                                 double voxel_mm) {
   // (The config's voxel size is its resolution choice; the guard asks about others.)
   const std::vector<double> voxels = ScheduleVoxels(voxel_mm);
@@ -81,7 +94,7 @@ std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw
 CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : config_(config) {
   StepClock clock;
   clock.Start("loaded the meshes");
-  jaws_ = LoadCaseJaws(config_);
+  jaws_ = AtReference(LoadConfigJaws(config_));
   clock.Finish();
   const std::string lower_name = JawName(config_, config_.lower),
                     upper_name = JawName(config_, config_.upper);

@@ -3,8 +3,10 @@
 // on first use and kept (so `refine --watch` pays for the trees only once). Building steps
 // that take over a second are reported on stderr.
 //
-// Frames: lower in L, upper in U as the case gives it (X_LU = identity is the pose as
-// scanned); the arch frame and the pivot are taken at that pose. Poses in the config and in
+// Frames: the session works on its jaw pair at the reference (session/jaw_pair.h: AtReference):
+// lower in L, upper in U as the files give it, the synthetic pair's upper moved to L at its
+// designed bite (like `occlude synth` case folders), so X_LU = identity is the pose as scanned;
+// the arch frame and the pivot are taken at that pose. Poses in the config and in
 // the outputs are about pivot_L (planner::ComposePose with the reference = identity).
 #pragma once
 
@@ -18,10 +20,16 @@
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/planner/request.h"
-#include "session/case_jaws.h"
+#include "session/jaw_pair.h"
 #include "session/session_region.h"
 
 namespace occlude::app {
+
+/// Arch frame for shares and views: EstimateArchFrame on the jaws at X_LU; with an up-axis
+/// hint the occlusal axis is the hint and the anterior direction the estimate's, made
+/// perpendicular.
+collision::ArchFrame CaseArchFrame(const CaseConfig& config, const io::TriangleMesh& lower_L,
+                                   const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU);
 
 /// The voxel sizes of the planner's schedule for a config: coarse to fine, ending at the
 /// config's voxel size ({0.8, 0.4, v} for v < 0.4, else {max(0.8, 2 v), v}).
@@ -31,7 +39,7 @@ std::vector<double> ScheduleVoxels(double finest_mm);
 
 /// Estimated peak memory of what a session of `config` builds when its finest voxel size
 /// is `voxel_mm`: the oracles of the schedule ending there and the map fields.
-collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const CaseJaws& jaws,
+collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const JawPair& jaws,
                                                 double voxel_mm);
 
 /// Exact distance fields of both meshes for the report's vertex maps.
@@ -48,7 +56,7 @@ class CaseSession {
   explicit CaseSession(const CaseConfig& config, double memory_budget_mb = 0);
 
   const CaseConfig& config() const { return config_; }
-  const CaseJaws& jaws() const { return jaws_; }
+  const JawPair& jaws() const { return jaws_; }
   const collision::ArchFrame& arch() const { return arch_; }
   /// The rotation pivot in L (at identity U = L): the config's pivot_mm or the centre of the
   /// upper arch's occlusal surface.
@@ -81,7 +89,7 @@ class CaseSession {
 
  private:
   CaseConfig config_;
-  CaseJaws jaws_;
+  JawPair jaws_;
   collision::ArchFrame arch_;
   Eigen::Vector3d pivot_L_ = Eigen::Vector3d::Zero();
   /// One oracle per schedule stage, built on demand (the report needs only the finest).

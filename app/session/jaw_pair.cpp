@@ -1,54 +1,90 @@
-// Case folders (see case_folder.h).
+// Jaw pairs and their loader (see jaw_pair.h).
 #include "session/jaw_pair.h"
 
 #include <iostream>
 
 #include "base/user_error.h"
-#include "occlude/io/mesh_io.h"
 #include "session/synthetic_case.h"
 
 namespace occlude::app {
 namespace {
 
-std::shared_ptr<const io::TriangleMesh> LoadJaw(const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) {
-    throw UserError(file.string() + ": not found (a case folder holds upper.stl and lower.stl)");
-  }
+void PrintWarnings(const io::LoadReport& report) {
+  for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
+}
+
+std::string FolderName(const std::filesystem::path& dir) {
+  return dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
+}
+
+}  // namespace
+
+std::shared_ptr<const io::TriangleMesh> LoadJaw(const std::vector<std::filesystem::path>& files,
+                                                bool parts, io::LengthUnit unit) {
+  io::LoadOptions options;
+  options.unit = unit;
+  io::LoadReport report;
   try {
-    io::LoadReport report;
-    auto mesh = std::make_shared<io::TriangleMesh>(io::LoadMesh(file, {}, &report));
-    for (const auto& w : report.warnings) std::cerr << "occlude: warning: " << w << "\n";
+    auto mesh =
+        std::make_shared<io::TriangleMesh>(parts ? io::LoadJawParts(files, options, &report)
+                                                 : io::LoadMesh(files.front(), options, &report));
+    PrintWarnings(report);
     return mesh;
   } catch (const io::MeshError& e) {
     throw UserError(e.what());
   }
 }
 
-}  // namespace
+std::shared_ptr<const io::TriangleMesh> LoadExistingMesh(const std::filesystem::path& file,
+                                                         const std::string& missing_hint) {
+  if (!std::filesystem::exists(file)) {
+    throw UserError(file.string() + ": not found (" + missing_hint + ")");
+  }
+  return LoadJaw({file}, false);
+}
 
-JawPairCase LoadCaseFolder(const std::filesystem::path& dir) {
+JawPair LoadCaseFolder(const std::filesystem::path& dir, const std::string& missing_hint) {
   if (!std::filesystem::is_directory(dir)) {
     throw UserError("--case: '" + dir.string() +
                     "' is not a folder (it must hold upper.stl and lower.stl)");
   }
-  JawPairCase c;
-  c.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-  c.lower_L = LoadJaw(dir / "lower.stl");
-  c.upper_U = LoadJaw(dir / "upper.stl");
-  return c;
+  JawPair pair;
+  pair.name = FolderName(dir);
+  pair.lower_L = LoadExistingMesh(dir / "lower.stl", missing_hint);
+  pair.upper_U = LoadExistingMesh(dir / "upper.stl", missing_hint);  // in L at the bite: U = L
+  return pair;
 }
 
-JawPairCase SyntheticJawPairCase(std::size_t triangles, std::uint32_t seed) {
+JawPair SyntheticJawPair(std::size_t triangles, std::uint32_t seed) {
   io::SyntheticJawOptions options;
   options.triangles_per_jaw = triangles;
   options.seed = seed;
   const io::SyntheticJawPair jaws = MakeSyntheticOrExplain(options);
-  JawPairCase c;
-  c.name = "synthetic-" + std::to_string(triangles);
-  c.lower_L = std::make_shared<io::TriangleMesh>(jaws.lower_L);
-  c.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
-  c.X_LU_ref = jaws.X_LU;
-  return c;
+  JawPair pair;
+  pair.name = "synthetic-" + std::to_string(triangles);
+  pair.lower_L = std::make_shared<io::TriangleMesh>(jaws.lower_L);
+  pair.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
+  pair.X_LU_ref = jaws.X_LU;
+  pair.occlusal_axis_L = jaws.occlusal_axis_L;
+  for (const auto& c : jaws.contacts) pair.truth_contacts_L.push_back(c.p_L);
+  return pair;
+}
+
+JawPair LoadConfigJaws(const CaseConfig& config) {
+  if (config.synthetic)
+    return SyntheticJawPair(config.synthetic->triangles, config.synthetic->seed);
+  JawPair pair;
+  pair.name = config.name;
+  pair.lower_L = LoadJaw(config.lower->files, config.lower->parts, config.units);
+  pair.upper_U = LoadJaw(config.upper->files, config.upper->parts, config.units);
+  return pair;
+}
+
+JawPair AtReference(JawPair pair) {
+  if (pair.X_LU_ref.matrix() == Eigen::Matrix4d::Identity()) return pair;
+  pair.upper_U = std::make_shared<io::TriangleMesh>(pair.upper_U->Transformed(pair.X_LU_ref));
+  pair.X_LU_ref = Eigen::Isometry3d::Identity();
+  return pair;
 }
 
 }  // namespace occlude::app

@@ -282,7 +282,7 @@ std::vector<ValidateSummary> Summaries(std::vector<ValidateRun>* runs,
 
 }  // namespace
 
-ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& options) {
+ValidateResult RunValidation(const JawPair& jaws, const ValidateOptions& options) {
   ValidateResult result;
   result.case_name = jaws.name;
   const double t0 = NowSeconds();

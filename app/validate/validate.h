@@ -117,7 +117,7 @@ struct ValidateResult {
   double build_seconds = 0.0;
 };
 
-ValidateResult RunValidation(const JawPairCase& jaws, const ValidateOptions& options);
+ValidateResult RunValidation(const JawPair& jaws, const ValidateOptions& options);
 
 std::string ValidateCsv(const ValidateResult& result);
 std::string ValidateSummaryCsv(const ValidateResult& result);

@@ -11,14 +11,8 @@ namespace occlude::test {
 namespace {
 
 app::BenchCase SyntheticCase() {
-  io::SyntheticJawOptions options;
-  options.triangles_per_jaw = 5000;
-  const io::SyntheticJawPair jaws = io::MakeSyntheticJawPair(options);
-  app::BenchCase bc;
-  bc.lower_L = std::make_shared<io::TriangleMesh>(jaws.lower_L);
-  bc.upper_U = std::make_shared<io::TriangleMesh>(jaws.upper_U);
-  bc.X_LU_ref = jaws.X_LU;
-  bc.axis_L = jaws.occlusal_axis_L;
+  app::BenchCase bc{app::SyntheticJawPair(5000, io::SyntheticJawOptions{}.seed)};
+  bc.axis_L = *bc.occlusal_axis_L;
   return bc;
 }
 

@@ -40,7 +40,7 @@ const std::string kSyntheticConfig =
 struct Fixture {
   app::CaseConfig config;
   std::unique_ptr<app::CaseSession> session;
-  app::CaseJaws jaws;
+  app::JawPair jaws;
   app::ReportAnalysis truth, pushed;
 };
 

@@ -49,7 +49,7 @@ const ValidateResult& SmallRun(ValidateOptions* used = nullptr) {
     return o;
   }();
   static const ValidateResult result =
-      RunValidation(SyntheticJawPairCase(io::kMinSyntheticTriangles, 1), options);
+      RunValidation(SyntheticJawPair(io::kMinSyntheticTriangles, 1), options);
   if (used) *used = options;
   return result;
 }
@@ -168,7 +168,7 @@ TEST(PoseDominanceTest, MoreContactAndNoDeeperPenetrationDominates) {
 // the designed bite, and the check must find poses on the way, beyond the 0.3 mm success bar,
 // that dominate the opened reference (contact, no penetration).
 TEST(ValidateTest, ReferenceCheckFindsAnUnseatedReferenceDominated) {
-  JawPairCase jaws = SyntheticJawPairCase(io::kMinSyntheticTriangles, 1);
+  JawPair jaws = SyntheticJawPair(io::kMinSyntheticTriangles, 1);
   const Eigen::Isometry3d X_bite = jaws.X_LU_ref;
   jaws.X_LU_ref.pretranslate(
       Eigen::Vector3d(0.0, 0.5, 0.0));  // +y: occlusal axis of the synthetic pair
