@@ -28,10 +28,12 @@
 #include <string>
 #include <vector>
 
+#include "data_dir.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/io/mesh_io.h"
+#include "session/jaw_pair.h"
 
 namespace {
 
@@ -57,11 +59,6 @@ double MedianMicros(F&& f, int reps) {
   }
   std::sort(us.begin(), us.end());
   return us[us.size() / 2];
-}
-
-std::filesystem::path DataDir() {
-  if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
-  return OCCLUDE_DEFAULT_DATA_DIR;
 }
 
 struct Args {
@@ -290,15 +287,16 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
 
 int main(int argc, char** argv) {
   const Args args = Parse(argc, argv);
-  const auto dir = DataDir() / "cases" / args.case_name;
+  const auto dir = bench::SharedCaseDir(args.case_name);
   if (!std::filesystem::exists(dir / "lower.stl")) {
     std::printf(
         "occlude_oracle_sweep: case %s not found under %s (set OCCLUDE_DATA_DIR); skipped\n",
-        args.case_name.c_str(), DataDir().c_str());
+        args.case_name.c_str(), bench::DataDir().c_str());
     return 0;
   }
-  const auto lower = std::make_shared<const io::TriangleMesh>(io::LoadMesh(dir / "lower.stl"));
-  const auto upper = std::make_shared<const io::TriangleMesh>(io::LoadMesh(dir / "upper.stl"));
+  const app::JawPair jaws = app::LoadCaseFolder(dir);
+  const auto& lower = jaws.lower_L;
+  const auto& upper = jaws.upper_U;  // in L at the bite
   Vector3d axis = Vector3d::Zero();
   axis[args.axis] = 1.0;
   Vector3d pivot = Vector3d::Zero();

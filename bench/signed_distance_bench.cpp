@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "data_dir.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/io/mesh_io.h"
@@ -25,15 +26,10 @@ using occlude::collision::NarrowBandSdf;
 using occlude::collision::VoxelGrid;
 using V = Eigen::Vector3d;
 
-std::filesystem::path DataDir() {
-  if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
-  return OCCLUDE_DEFAULT_DATA_DIR;
-}
-
 /// The lower jaw, loaded once (null when absent).
 std::shared_ptr<const occlude::io::TriangleMesh> LowerJaw() {
   static const std::shared_ptr<const occlude::io::TriangleMesh> mesh = [] {
-    const auto file = DataDir() / "cases" / "a-bite-3shape" / "lower.stl";
+    const auto file = occlude::bench::SharedCaseDir("a-bite-3shape") / "lower.stl";
     if (!std::filesystem::exists(file)) return std::shared_ptr<const occlude::io::TriangleMesh>();
     return std::make_shared<const occlude::io::TriangleMesh>(occlude::io::LoadMesh(file));
   }();

@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "data_dir.h"
 #include "occlude/collision/triangle_box.h"
 #include "occlude/collision/voxel_grid.h"
 #include "occlude/io/mesh_io.h"
@@ -22,12 +23,6 @@ namespace {
 using occlude::collision::Voxelize;
 using occlude::collision::VoxelizeOptions;
 using occlude::collision::VoxelizeStats;
-
-std::filesystem::path DataDir() {
-  if (const char* env = std::getenv("OCCLUDE_DATA_DIR")) return env;
-  // bench/ -> repository -> its parent, where shared/ lives.
-  return OCCLUDE_DEFAULT_DATA_DIR;
-}
 
 /// The real loader; an empty mesh when the file cannot be read.
 occlude::io::TriangleMesh ReadBinaryStl(const std::filesystem::path& file) {
@@ -43,7 +38,7 @@ const occlude::io::TriangleMesh& Jaw(const std::string& jaw) {
   static std::map<std::string, occlude::io::TriangleMesh> cache;
   auto it = cache.find(jaw);
   if (it == cache.end()) {
-    const auto file = DataDir() / "cases" / "a-bite-3shape" / (jaw + ".stl");
+    const auto file = occlude::bench::SharedCaseDir("a-bite-3shape") / (jaw + ".stl");
     occlude::io::TriangleMesh mesh;
     if (std::filesystem::exists(file)) mesh = ReadBinaryStl(file);
     it = cache.emplace(jaw, std::move(mesh)).first;

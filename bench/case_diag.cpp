@@ -10,8 +10,8 @@
 #include <numeric>
 
 #include "occlude/collision/signed_distance.h"
-#include "occlude/io/mesh_io.h"
 #include "occlude/planner/plan.h"
+#include "session/jaw_pair.h"
 
 using namespace occlude;
 
@@ -101,8 +101,9 @@ int main(int argc, char** argv) {
   if (argc < 2) return 2;
   const std::string dir = argv[1];
   const double voxel = argc > 2 ? std::atof(argv[2]) : 0.4;
-  auto lower = std::make_shared<io::TriangleMesh>(io::LoadMesh(dir + "/lower.stl"));
-  auto upper = std::make_shared<io::TriangleMesh>(io::LoadMesh(dir + "/upper.stl"));
+  const app::JawPair jaws = app::LoadCaseFolder(dir);
+  const auto& lower = jaws.lower_L;
+  const auto& upper = jaws.upper_U;
   collision::OracleOptions o;
   o.voxel_size_mm = voxel;
   collision::JawOracle fwd(lower, upper, o), rev(upper, lower, o);

@@ -11,9 +11,9 @@
 #include <memory>
 #include <vector>
 
-#include "occlude/io/mesh_io.h"
 #include "occlude/planner/evaluation.h"
 #include "occlude/planner/plan.h"
+#include "session/jaw_pair.h"
 
 using namespace occlude;
 
@@ -32,8 +32,9 @@ int main(int argc, char** argv) {
   const double s_max = argc > 10 ? std::atof(argv[10]) : 1.2;
 
   try {
-    auto lower = std::make_shared<io::TriangleMesh>(io::LoadMesh(dir + "/lower.stl"));
-    auto upper = std::make_shared<io::TriangleMesh>(io::LoadMesh(dir + "/upper.stl"));
+    const app::JawPair jaws = app::LoadCaseFolder(dir);
+    const auto& lower = jaws.lower_L;
+    const auto& upper = jaws.upper_U;
     const planner::OwnedSchedule schedule = planner::BuildSchedule(lower, upper, {voxel}, false);
     const planner::OracleStage& stage = schedule.stages.back();
     const auto& arch = stage.oracle->arch();
