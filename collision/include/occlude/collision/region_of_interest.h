@@ -2,42 +2,12 @@
 // anywhere over a pose search, so that the oracles model only those (crowns near the occlusal
 // plane) and not the base, the palate or the gingiva far from the bite.
 //
-// The reach. The search moves the upper jaw from the start pose X_LU_start by parameters
-// within per-DOF bounds: q' = pivot_L + t + Rot(w) (q - pivot_L) for an upper point q (in L at
-// the start pose), |t_i| <= T_i, |w_i| <= W_i (planner::ComposePose). So
-//   |q' - q| <= |t| + |(Rot(w) - I)(q - pivot_L)| = |t| + 2 sin(|w| / 2) |q - pivot_L|
-//           <= |T| + 2 sin(min(|W|, pi) / 2) max_q |q - pivot_L| =: D,
-// with T, W the per-DOF bounds' largest magnitudes (0 for locked DOFs) and the maximum over
-// the upper's vertices (the farthest point of a triangle from a point is a corner). D is a
-// sound upper bound of any upper point's displacement over the bounds. Given `band_mm`, the
-// farthest any query reads the other jaw's surface around a point (OracleReadRadiusMm), the
-// reach is R = band + D: a triangle of either jaw farther than R from the other jaw at the
-// start pose is farther than `band` from it at every pose within the bounds, so no query at
-// such a pose reads it (or, for an upper triangle, its samples read nothing).
-//
-// Selection. A triangle is kept unless it is proved farther than R from the other jaw's
-// surface at the start pose: the other jaw is voxelized in L (coarse voxels,
-// RegionOfInterestRequest::voxel_size_mm) and its DistanceBound (a lower bound of the distance
-// to its voxel cubes, which hold its surface) is read at the triangle's bounding-sphere centre.
-// One O(1) probe per triangle, never triangle pairs. Conservative: triangles a little beyond R
-// (up to the bound's slack, about a fifth of R plus a voxel diagonal) may be kept; none
-// within R is dropped; a reach beyond what the bound certifies (60 mm at 0.5 mm voxels) keeps
-// everything. A closed component of the lower jaw (as Voxelize's interior stage finds them:
-// a tooth shell, a closed model) is kept whole when any of its triangles is kept: the oracle
-// reads the lower's interior (deep samples, and its culls of unknown cells) and a cut would
-// open it. The upper's interior is never read, so the upper is cut freely.
-//
-// Open borders (contract). Cutting leaves open borders, each farther than R from the other
-// jaw at the start pose (it is an edge of a dropped triangle), so farther than `band` from
-// every point of the other jaw at every pose within the bounds: no query reads a closest
-// point on a cut, so the signed-distance rule for open borders (signed_distance.h: outside)
-// never applies there, and the lower's closed components (its interior) are as in the whole
-// jaw. Hence, at every pose within the bounds, an oracle built on the two sub-meshes (with the
-// whole jaws' arch frame) gives the same contacts, penetrations, deep samples, minimum
-// distance (within the band the query makes exact) and per-part totals as one built on the
-// whole jaws, up to float rounding: the sub-meshes' grids share the lattice of the whole ones
-// but not their origin, so samples are grouped into other cells and their float offsets from
-// the cell centres round differently.
+// Contract: a triangle is dropped only when it is proved farther than the reach R = band + D
+// from the other jaw at the start pose (D bounds any upper point's displacement over the
+// search bounds; band is OracleReadRadiusMm), one O(1) DistanceBound probe per triangle; a
+// closed component of the lower jaw is kept whole. At every pose within the bounds an oracle
+// on the cut jaws then gives the answers of one on the whole jaws, up to float rounding. The
+// argument (the reach, the selection, the open borders) is in docs/region-of-interest.md.
 //
 // Frames and units: lower in L, upper in U, mm; bounds in mm and degrees.
 #pragma once
