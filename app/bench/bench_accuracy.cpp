@@ -1,6 +1,6 @@
 // The speed-against-accuracy run of `occlude bench --accuracy` (see
 // bench_accuracy.h): builds each method once, queries it at every pose, turns
-// its answer into claims and scores them (bench_accuracy_score.h).
+// its answer into claims and scores them (bench_accuracy_score_internal.h).
 #include "bench/bench_accuracy.h"
 
 #include <algorithm>

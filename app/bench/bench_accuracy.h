@@ -3,7 +3,7 @@
 // with simple, optimized and explicit spheres at voxel level and with exact
 // triangle refinement; FCL all-contacts and distance) is timed at the same
 // seeded poses about the registered bite and scored against exact
-// triangle-level ground truth (bench_accuracy_score.h states the definitions).
+// triangle-level ground truth (bench_accuracy_score_internal.h states the definitions).
 //
 // Poses: `poses` offsets along the occlusal axis, stratified over
 // [offset_lo_mm, offset_hi_mm] (one uniform draw per stratum), each with the

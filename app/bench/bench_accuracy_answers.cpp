@@ -1,5 +1,5 @@
 // What each query answered, as claims about the upper surface (see
-// bench_accuracy_answers.h).
+// bench_accuracy_answers_internal.h).
 #include <algorithm>
 #include <map>
 

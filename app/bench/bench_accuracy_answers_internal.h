@@ -1,5 +1,5 @@
 // Each query's answer in `occlude bench --accuracy` turned into claims about
-// the upper surface (bench_accuracy_score.h defines claims and how they are
+// the upper surface (bench_accuracy_score_internal.h defines claims and how they are
 // scored): which points or elements a method says are in contact, at what
 // distance, and how a truth contact counts as covered by them.
 #pragma once

@@ -1,4 +1,4 @@
-// Scoring of the accuracy study (see bench_accuracy_score.h).
+// Scoring of the accuracy study (see bench_accuracy_score_internal.h).
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>

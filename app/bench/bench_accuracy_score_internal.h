@@ -1,6 +1,6 @@
 // Scoring of `occlude bench --accuracy`: what a method answered at one pose,
 // turned into claims about the upper surface, and each claim checked against
-// the ground truth (bench_accuracy_truth.h). The definitions here are the ones
+// the ground truth (bench_accuracy_truth_internal.h). The definitions here are the ones
 // the accuracy CSV's header and the README state:
 //
 // Truth at a pose X_LU: d*(s), the exact signed distance of each fixed upper

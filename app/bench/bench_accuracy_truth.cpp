@@ -1,4 +1,4 @@
-// Ground truth of the accuracy study (see bench_accuracy_truth.h).
+// Ground truth of the accuracy study (see bench_accuracy_truth_internal.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>

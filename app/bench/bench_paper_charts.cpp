@@ -1,4 +1,4 @@
-// The charts of `occlude bench --paper` (see bench_paper_charts.h): one per
+// The charts of `occlude bench --paper` (see bench_paper_charts_internal.h): one per
 // figure, against the voxel size on log-log axes with s^-2 and s^-3 guides,
 // the paper's numbers where it gives them, and Fig. 10 against the offset.
 #include <algorithm>

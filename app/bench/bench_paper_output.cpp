@@ -1,5 +1,5 @@
 // Output files of `occlude bench --paper` (see bench_paper.h): one CSV per
-// figure group, the fitted growth, a summary, and the charts (bench_paper_charts.h).
+// figure group, the fitted growth, a summary, and the charts (bench_paper_charts_internal.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

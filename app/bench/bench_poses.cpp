@@ -1,9 +1,10 @@
-// Benchmark poses (see bench_poses.h).
+// Benchmark poses (see bench_poses_internal.h).
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "bench/bench_poses_internal.h"
+#include "occlude/collision/arch_frame.h"
 
 namespace occlude::app {
 namespace {
@@ -21,11 +22,9 @@ Eigen::Isometry3d RotationAbout(const Eigen::Vector3d& pivot_L, const Eigen::Ang
 
 }  // namespace
 
-Eigen::Vector3d UpperCentroidL(const BenchCase& bc) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const auto& v : bc.upper_U->vertices) sum += v;
-  const double n = std::max<double>(1.0, static_cast<double>(bc.upper_U->vertices.size()));
-  return bc.X_LU_ref * (sum / n);
+// The pivot of the jitter: the centre of the upper occlusal surface at the bite.
+Eigen::Vector3d PivotL(const BenchCase& bc) {
+  return collision::UpperOcclusalCentre(*bc.upper_U, bc.X_LU_ref, bc.axis_L);
 }
 
 std::vector<std::vector<Eigen::Isometry3d>> SweepPoses(const BenchCase& bc,
@@ -35,7 +34,7 @@ std::vector<std::vector<Eigen::Isometry3d>> SweepPoses(const BenchCase& bc,
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Eigen::Vector3d pivot_L = UpperCentroidL(bc);
+  const Eigen::Vector3d pivot_L = PivotL(bc);
   const Eigen::Vector3d across = Perpendicular(bc.axis_L);
   std::vector<std::vector<Eigen::Isometry3d>> poses;
   for (const double offset : offsets_mm) {
@@ -67,7 +66,7 @@ HapticTrajectory::HapticTrajectory(
   lateral_L_ = (lateral_L - lateral_L.dot(bc.axis_L) * bc.axis_L).normalized();
   anterior_L_ = bc.axis_L.cross(lateral_L_).normalized();
   if (anterior_L_.dot(anterior_L) < 0) anterior_L_ = -anterior_L_;
-  pivot_L_ = UpperCentroidL(bc);
+  pivot_L_ = PivotL(bc);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   amp_lat_ = 0.2 + 0.2 * u(rng);

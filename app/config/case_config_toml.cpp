@@ -1,4 +1,4 @@
-// Checked TOML table access for case files (see case_config_toml.h).
+// Checked TOML table access for case files (see case_config_toml_internal.h).
 #include <cmath>
 #include <limits>
 #include <sstream>

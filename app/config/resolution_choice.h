@@ -1,4 +1,4 @@
-// Accuracy-driven resolution (issue 7): the user states the distance accuracy wanted
+// Accuracy-driven resolution: the user states the distance accuracy wanted
 // (`accuracy.accuracy_mm`) and occlude picks the voxel size and the accuracy level of the
 // contact oracle from a measured speed-accuracy table (`occlude bench --accuracy` writes
 // one, accuracy-table.json), instead of a hand-set voxel size.

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "occlude/collision/arch_frame.h"
+
 namespace occlude::planner {
 
 double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2) {
@@ -146,27 +148,10 @@ void ForOcclusalTriangles(const io::TriangleMesh& upper_U, const Eigen::Isometry
 
 }  // namespace
 
-Eigen::Vector3d OcclusalPivot(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU,
-                              const Eigen::Vector3d& occlusal_L, double crown_depth_mm) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double area = 0.0;
-  ForOcclusalTriangles(upper_U, X_LU, occlusal_L, crown_depth_mm,
-                       [&](const Eigen::Vector3d& c, double a) {
-                         sum += a * c;
-                         area += a;
-                       });
-  if (area > 0.0) return sum / area;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const auto& v : upper_U.vertices) centroid += X_LU * v;
-  return upper_U.vertices.empty()
-             ? centroid
-             : Eigen::Vector3d(centroid / static_cast<double>(upper_U.num_vertices()));
-}
-
 std::vector<Eigen::Vector3d> ArchReferencePoints_U(const io::TriangleMesh& upper_U,
                                                    const Eigen::Isometry3d& X_LU,
                                                    const collision::ArchFrame& arch) {
-  const Eigen::Vector3d pivot_L = OcclusalPivot(upper_U, X_LU, arch.occlusal_L);
+  const Eigen::Vector3d pivot_L = collision::UpperOcclusalCentre(upper_U, X_LU, arch.occlusal_L);
   Eigen::Vector3d front = pivot_L, back_left = pivot_L, back_right = pivot_L;
   double best_front = -1e300, best_left = -1e300, best_right = -1e300;
   ForOcclusalTriangles(upper_U, X_LU, arch.occlusal_L, 4.0, [&](const Eigen::Vector3d& c, double) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "occlude/collision/arch_frame.h"
 #include "search_internal.h"
 
 namespace occlude::planner::detail {
@@ -48,8 +49,8 @@ Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request) 
   p.X_ref = request.X_LU_start;
   p.arch = finest.arch();
   const io::TriangleMesh& upper_U = finest.upper_tree().mesh();
-  p.pivot_L =
-      request.pivot_L ? *request.pivot_L : OcclusalPivot(upper_U, p.X_ref, p.arch.occlusal_L);
+  p.pivot_L = request.pivot_L ? *request.pivot_L
+                              : collision::UpperOcclusalCentre(upper_U, p.X_ref, p.arch.occlusal_L);
   p.lower << request.lower_bound.translation_mm, request.lower_bound.rotation_deg;
   p.upper << request.upper_bound.translation_mm, request.upper_bound.rotation_deg;
   for (int i = 0; i < kNumDof; ++i) {

@@ -1,4 +1,4 @@
-// Numerical robustness of the contact oracle (issue 8), on the synthetic jaw
+// Numerical robustness of the contact oracle, on the synthetic jaw
 // pair and on nested spheres, with seeded random poses: every number of every
 // result is finite (or +inf where documented), at all three accuracy levels,
 // for poses far apart (up to 10^12 mm), nested jaws (partly nested ones show

@@ -23,8 +23,8 @@ TEST(PlanRealTest, IntraoralCaseSettlesWithOutliersListed) {
   PoseParameters perturb;
   perturb.translation_mm = Eigen::Vector3d(0.5, 0.5, -0.5);
   perturb.rotation_deg = Eigen::Vector3d(1.0, 0.0, 1.0);
-  const Eigen::Vector3d pivot = OcclusalPivot(*upper, Eigen::Isometry3d::Identity(),
-                                              schedule.stages[0].oracle->arch().occlusal_L);
+  const Eigen::Vector3d pivot = collision::UpperOcclusalCentre(
+      *upper, Eigen::Isometry3d::Identity(), schedule.stages[0].oracle->arch().occlusal_L);
   req.X_LU_start = ComposePose(perturb, pivot, Eigen::Isometry3d::Identity());
   const PlanResult res = Plan(schedule.stages, req);
   ASSERT_FALSE(res.proposals.empty());

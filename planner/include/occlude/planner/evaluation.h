@@ -95,13 +95,8 @@ double RobustPenetration(const std::vector<std::pair<double, double>>& depth_are
 /// Outlier area budget of the request given the near-contact (contact + penetration) area.
 double OutlierBudget(const PlanRequest& request, double near_contact_area_mm2);
 
-/// Centre of the upper arch's occlusal surface in L: the area-weighted centroid of the upper
-/// triangles (at X_LU) whose normals face the lower jaw (normal . -occlusal > 0.5) within the
-/// lowest `crown_depth_mm` along the occlusal axis. Falls back to the mesh centroid.
-Eigen::Vector3d OcclusalPivot(const io::TriangleMesh& upper_U, const Eigen::Isometry3d& X_LU,
-                              const Eigen::Vector3d& occlusal_L, double crown_depth_mm = 4.0);
-
-/// Reference points of the upper arch in U for pose errors: the occlusal pivot, the most
+/// Reference points of the upper arch in U for pose errors: the default pivot (the centre of the
+/// upper occlusal surface, collision::UpperOcclusalCentre, at X_LU), the most
 /// anterior occlusal point (incisors) and the most posterior occlusal points left and right
 /// (molars), taken on the occlusal-facing triangles at X_LU.
 std::vector<Eigen::Vector3d> ArchReferencePoints_U(const io::TriangleMesh& upper_U,

@@ -90,7 +90,8 @@ struct PlanRequest {
   PoseParameters upper_bound{Eigen::Vector3d::Constant(3.0), Eigen::Vector3d::Constant(6.0)};
   /// Locked DOFs keep their start value (order as kNumDof).
   std::array<bool, kNumDof> locked{};
-  /// Rotation pivot in L at the start pose; default OcclusalPivot(upper at X_LU_start).
+  /// Rotation pivot in L at the start pose; default the centre of the upper occlusal surface
+  /// (collision::UpperOcclusalCentre, the upper at X_LU_start).
   std::optional<Eigen::Vector3d> pivot_L;
 
   std::uint32_t seed = 1;
