@@ -24,6 +24,7 @@
 #include <random>
 #include <vector>
 
+#include "occlude/io/dental.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "occlude/planner/evaluation.h"
 #include "occlude/planner/plan.h"
@@ -241,6 +242,16 @@ std::vector<Cluster> ClusterSeats(const Setup& s, const std::vector<Search>& sea
   return clusters;
 }
 
+/// Contact per upper tooth (FDI number: mm^2), teeth with at least 0.05 mm^2.
+void PrintTeeth(const planner::PoseEvaluation& e) {
+  std::printf("        by upper tooth:");
+  for (const collision::PartTotals& part : e.parts) {
+    if (part.tooth_number <= 0 || part.contact_area_mm2 < 0.05) continue;
+    std::printf(" %d: %.1f", io::FdiFromUniversal(part.tooth_number), part.contact_area_mm2);
+  }
+  std::printf("\n");
+}
+
 void PrintSeats(const Setup& s, const std::vector<SweepRow>& rows,
                 const std::vector<std::size_t>& candidates, const std::vector<Search>& searches) {
   const std::vector<Cluster> clusters = ClusterSeats(s, searches);
@@ -250,24 +261,27 @@ void PrintSeats(const Setup& s, const std::vector<SweepRow>& rows,
       "\nseats (searches within %.1f mm / %.0f deg of each other); designed bite settled: "
       "%.2f mm2, closing %.3f mm\n",
       kSeatTranslationMm, kSeatRotationDeg, design_area, design.closing_mm);
+  PrintTeeth(design.evaluation);
   std::printf(
-      " seat  dz_mm   dx_mm   dy_mm  rot_deg  contact_mm2  of_design  maxpen  robust"
-      "  starts  from candidates (dz: count)\n");
+      " seat  dz_mm   dx_mm   dy_mm  rot_deg  contact_mm2  of_design  post_L  post_R  maxpen"
+      "  robust  starts  from candidates (dz: count)\n");
   for (std::size_t c = 0; c < clusters.size(); ++c) {
-    const planner::Proposal& f = searches[clusters[c].best].found;
-    const Eigen::Vector3d d = ShiftOf(s, f.X_LU);
-    const double rot = planner::ComparePoses(f.X_LU, s.pair.X_LU, s.points_U).rotation_deg;
-    std::printf("%5zu  %5.2f  %6.2f  %6.2f  %7.2f  %11.2f  %8.0f%%  %6.3f  %6.3f  %6zu  ", c, d.z(),
-                d.x(), d.y(), rot, f.evaluation.contact_area_mm2,
-                100.0 * f.evaluation.contact_area_mm2 / design_area,
-                f.evaluation.max_penetration_mm, f.evaluation.constrained_penetration_mm,
-                clusters[c].members.size());
+    const planner::PoseEvaluation& e = searches[clusters[c].best].found.evaluation;
+    const Eigen::Isometry3d& X = searches[clusters[c].best].found.X_LU;
+    const Eigen::Vector3d d = ShiftOf(s, X);
+    const double rot = planner::ComparePoses(X, s.pair.X_LU, s.points_U).rotation_deg;
+    std::printf(
+        "%5zu  %5.2f  %6.2f  %6.2f  %7.2f  %11.2f  %8.0f%%  %6.2f  %6.2f  %6.3f  %6.3f  %6zu  ", c,
+        d.z(), d.x(), d.y(), rot, e.contact_area_mm2, 100.0 * e.contact_area_mm2 / design_area,
+        e.posterior_left_mm2, e.posterior_right_mm2, e.max_penetration_mm,
+        e.constrained_penetration_mm, clusters[c].members.size());
     for (std::size_t cand = 0; cand < candidates.size(); ++cand) {
       int count = 0;
       for (const std::size_t m : clusters[c].members) count += searches[m].candidate == cand;
       if (count > 0) std::printf(" %.1f: %d", rows[candidates[cand]].dz, count);
     }
     std::printf("\n");
+    if (e.contact_area_mm2 >= 0.25 * design_area) PrintTeeth(e);
   }
 }
 
