@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "data_dir.h"
+#include "occlude/clock.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/collision/signed_distance.h"
@@ -41,21 +42,15 @@ using namespace occlude;  // NOLINT: a small program
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 
-double ThreadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 /// Median thread CPU microseconds of f() over reps calls (one warm-up call first).
 template <class F>
 double MedianMicros(F&& f, int reps) {
   f();
   std::vector<double> us;
   for (int i = 0; i < reps; ++i) {
-    const double t0 = ThreadSeconds();
+    const double t0 = ThreadCpuSeconds();
     f();
-    us.push_back(1e6 * (ThreadSeconds() - t0));
+    us.push_back(1e6 * (ThreadCpuSeconds() - t0));
   }
   std::sort(us.begin(), us.end());
   return us[us.size() / 2];
@@ -242,9 +237,9 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
   std::vector<double> cpu;
   collision::NarrowBandSdf sdf;
   for (int i = 0; i < 3; ++i) {
-    const double t0 = ThreadSeconds();
+    const double t0 = ThreadCpuSeconds();
     sdf = collision::NarrowBandSdf::Build(lower, grid);
-    cpu.push_back(ThreadSeconds() - t0);
+    cpu.push_back(ThreadCpuSeconds() - t0);
   }
   std::sort(cpu.begin(), cpu.end());
   std::printf(
@@ -329,10 +324,10 @@ int main(int argc, char** argv) {
         for (int which = 0; which < 2; ++which) {
           const collision::JawOracle& o = which == 0 ? a : b;
           collision::OracleResult& r = which == 0 ? ra : rb;
-          const double t0 = ThreadSeconds();
+          const double t0 = ThreadCpuSeconds();
           for (const Isometry3d& X : poses) o.Query(X, req, &r);
           (which == 0 ? ta : tb)
-              .push_back(1e6 * (ThreadSeconds() - t0) / static_cast<double>(poses.size()));
+              .push_back(1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(poses.size()));
         }
         same = same && ra.contact_samples == rb.contact_samples &&
                ra.max_penetration_mm == rb.max_penetration_mm &&
@@ -361,7 +356,7 @@ int main(int argc, char** argv) {
     if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
       req.penetration_search_mm = std::atof(search);
     collision::OracleResult res;
-    const double t0 = ThreadSeconds();
+    const double t0 = ThreadCpuSeconds();
     std::size_t n = 0;
     // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
     const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
@@ -372,7 +367,7 @@ int main(int argc, char** argv) {
     creq.first_only = true;
     creq.delta_mm = 0.1;
     collision::CollisionResult cres;
-    while (ThreadSeconds() - t0 < 10.0) {
+    while (ThreadCpuSeconds() - t0 < 10.0) {
       if (boolean) {
         collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
       } else {
@@ -387,20 +382,20 @@ int main(int argc, char** argv) {
     std::printf(
         "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
         "%zu contacts\n",
-        args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
-        res.node_tests, res.samples_evaluated, res.contact_samples);
+        args.profile.c_str(), n, 1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(n),
+        res.cells, res.node_tests, res.samples_evaluated, res.contact_samples);
     return 0;
   }
   collision::SphereTreeOptions topt;
   topt.voxelize.voxel_size_mm = 0.2;
   if (args.only.empty() || args.only == "boolean") {
-    double t0 = ThreadSeconds();
+    double t0 = ThreadCpuSeconds();
     const auto lt = collision::SphereTree::Build(lower, topt);
-    const double lower_s = ThreadSeconds() - t0;
-    t0 = ThreadSeconds();
+    const double lower_s = ThreadCpuSeconds() - t0;
+    t0 = ThreadCpuSeconds();
     const auto ut = collision::SphereTree::Build(upper, topt);
     std::printf("trees: lower %.3f s CPU %.1f MB, upper %.3f s CPU %.1f MB\n", lower_s,
-                static_cast<double>(lt.stats().total_bytes()) / 1e6, ThreadSeconds() - t0,
+                static_cast<double>(lt.stats().total_bytes()) / 1e6, ThreadCpuSeconds() - t0,
                 static_cast<double>(ut.stats().total_bytes()) / 1e6);
     RunBoolean(lt, ut, args, axis, pivot);
   }
@@ -410,10 +405,10 @@ int main(int argc, char** argv) {
     RunSdf(lower, collision::Voxelize(*lower, vopt), args);
   }
   if (args.only.empty() || args.only == "oracle") {
-    const double t0 = ThreadSeconds();
+    const double t0 = ThreadCpuSeconds();
     const collision::JawOracle oracle(lower, upper);
     std::printf("\noracle build: %.3f s wall, %.3f s calling-thread CPU, %.1f MB, %zu samples\n",
-                oracle.build_seconds(), ThreadSeconds() - t0,
+                oracle.build_seconds(), ThreadCpuSeconds() - t0,
                 static_cast<double>(oracle.MemoryBytes()) / 1e6, oracle.num_samples());
     RunOracle(oracle, args, axis, pivot);
   }

@@ -14,7 +14,6 @@
 // 4. Seats: the found poses clustered (within 0.5 mm at the arch reference points and 1 deg),
 //    with their shift from the designed bite, contact and penetration, and where their starts
 //    came from. Times are thread CPU seconds.
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +23,7 @@
 #include <random>
 #include <vector>
 
+#include "occlude/clock.h"
 #include "occlude/io/dental.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "occlude/planner/evaluation.h"
@@ -39,12 +39,6 @@ constexpr double kStartJitterMm = 1.0;      // perturbed starts: up to this far
 constexpr double kStartJitterDeg = 2.0;     // ... and this rotation about the pivot
 constexpr double kMaxOpeningMm = 12.0;      // the settle opens at most this far
 constexpr int kSettleIterations = 40;       // bisection steps (24 mm / 2^40)
-
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 struct Setup {
   io::SyntheticJawPair pair;

@@ -7,19 +7,13 @@
 #include <ctime>
 #include <vector>
 
+#include "occlude/clock.h"
+
 namespace occlude::app {
 
-/// CPU time of the calling thread, seconds: what a query costs, independent of
-/// how many other jobs share the machine's cores (wall time is not).
-inline double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-inline double NowSeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+// The clocks are occlude::ThreadCpuSeconds (thread CPU time: what a query costs) and
+// occlude::WallSeconds (occlude/clock.h); NowSeconds is the wall clock under the app's name.
+inline double NowSeconds() { return WallSeconds(); }
 
 /// Median and maximum of a sample (sorted in place); zeros for an empty sample.
 struct Summary {

@@ -22,8 +22,7 @@ Eigen::Isometry3d RotationAbout(const Eigen::Vector3d& pivot_L, const Eigen::Ang
 
 }  // namespace
 
-// The pivot of the jitter: the centre of the upper occlusal surface at the bite.
-Eigen::Vector3d PivotL(const BenchCase& bc) {
+Eigen::Vector3d SweepPivotL(const BenchCase& bc) {
   return collision::UpperOcclusalCentre(*bc.upper_U, bc.X_LU_ref, bc.axis_L);
 }
 
@@ -34,7 +33,7 @@ std::vector<std::vector<Eigen::Isometry3d>> SweepPoses(const BenchCase& bc,
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Eigen::Vector3d pivot_L = PivotL(bc);
+  const Eigen::Vector3d pivot_L = SweepPivotL(bc);
   const Eigen::Vector3d across = Perpendicular(bc.axis_L);
   std::vector<std::vector<Eigen::Isometry3d>> poses;
   for (const double offset : offsets_mm) {
@@ -66,7 +65,7 @@ HapticTrajectory::HapticTrajectory(
   lateral_L_ = (lateral_L - lateral_L.dot(bc.axis_L) * bc.axis_L).normalized();
   anterior_L_ = bc.axis_L.cross(lateral_L_).normalized();
   if (anterior_L_.dot(anterior_L) < 0) anterior_L_ = -anterior_L_;
-  pivot_L_ = PivotL(bc);
+  pivot_L_ = SweepPivotL(bc);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   amp_lat_ = 0.2 + 0.2 * u(rng);

@@ -47,7 +47,8 @@ class HapticTrajectory {
   std::vector<double> key_t_, key_offset_;
 };
 
-/// Centroid of the upper jaw's vertices in L at the bite.
-Eigen::Vector3d UpperCentroidL(const BenchCase& bench_case);
+/// The pivot of the sweep jitter and the haptic wobble: the centre of the upper occlusal surface
+/// (collision::UpperOcclusalCentre) in L at the bite.
+Eigen::Vector3d SweepPivotL(const BenchCase& bench_case);
 
 }  // namespace occlude::app

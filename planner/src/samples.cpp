@@ -6,15 +6,12 @@
 #include <ctime>
 #include <unordered_map>
 
+#include "occlude/clock.h"
 #include "search_internal.h"
 
 namespace occlude::planner::detail {
 
-double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+double CpuSeconds() { return ThreadCpuSeconds(); }
 
 namespace {
 

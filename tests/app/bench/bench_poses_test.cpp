@@ -23,7 +23,7 @@ TEST(BenchPosesTest, SweepPosesAreSeededAndJitteredWithinBounds) {
   const auto b = app::SweepPoses(bc, offsets, 20, 0.2, 0.05, 7);
   const auto c = app::SweepPoses(bc, offsets, 20, 0.2, 0.05, 8);
   ASSERT_EQ(a.size(), offsets.size());
-  const Eigen::Vector3d pivot_L = app::UpperCentroidL(bc);
+  const Eigen::Vector3d pivot_L = app::SweepPivotL(bc);
   for (std::size_t k = 0; k < offsets.size(); ++k) {
     ASSERT_EQ(a[k].size(), 20u);
     const Eigen::Isometry3d exact = Eigen::Translation3d(offsets[k] * bc.axis_L) * bc.X_LU_ref;
@@ -54,13 +54,13 @@ TEST(BenchPosesTest, HapticTrajectoryDescendsThenSlidesAtTheContactHeight) {
                                            return 0.05;
                                          });
   EXPECT_EQ(calls, 48);
-  const Eigen::Vector3d c0 = app::UpperCentroidL(bc);
+  const Eigen::Vector3d c0 = app::SweepPivotL(bc);
   auto height = [&](double t) {
     return (trajectory.At(t) * bc.X_LU_ref.inverse() * c0 - c0).dot(bc.axis_L);
   };
   EXPECT_NEAR(height(0.0), 2.0, 1e-9);
   EXPECT_NEAR(height(0.5), 0.05, 1e-6);
-  EXPECT_NEAR(height(1.7), 0.05, 0.01);  // the wobble tilts about the centroid: no lift there
+  EXPECT_NEAR(height(1.7), 0.05, 0.01);  // the wobble tilts about the pivot: no lift there
   // Continuous: at a 1 ms tick no point of the jaw jumps by more than 10 um.
   double worst = 0.0;
   for (double t = 0.0; t < 2.0; t += 1e-3) {
