@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "occlude/io/content_hash.h"
+
 namespace occlude::collision::detail {
 
 /// Open-addressing hash from a 64-bit key (never ~0) to a 32-bit value:
@@ -31,14 +33,7 @@ class KeyIndexHash {
   std::size_t size() const { return size_; }
   std::size_t MemoryBytes() const { return slots_.capacity() * sizeof(Slot); }
 
-  static std::uint64_t Mix(std::uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31;
-    return x;
-  }
+  static std::uint64_t Mix(std::uint64_t x) { return io::Mix64(x); }
 
  private:
   struct Slot {
