@@ -8,7 +8,14 @@
 // exact distances (p95 error, contacts within 0.05 mm missed).
 //
 //   occlude_oracle_sweep [--case a-bite-3shape] [--axis y] [--reps 15] [--jitter 3]
-//                        [--only boolean|oracle|sdf] [--profile OFFSET]
+//                        [--only boolean|oracle|sdf|build|digest] [--profile OFFSET]
+//                        [--voxel 0.2] [--builds 3]
+//
+// --only build builds the oracle (--voxel, default options otherwise, as `occlude bench`)
+// --builds times and prints each build's wall time and process CPU time (all threads).
+// --only digest prints a hash of every answer (totals, parts, points, residuals) of the
+// voxel, sub-voxel and exact levels at the sweep's jittered poses: equal digests from two
+// builds of the library mean bit-identical answers.
 //
 // --profile OFFSET repeats only the sub-voxel oracle query at that offset (no jitter) for
 // 10 s of thread CPU, for a profiler: perf record -g occlude_oracle_sweep --profile -0.2
@@ -31,6 +38,7 @@
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/collision/signed_distance.h"
+#include "occlude/io/content_hash.h"
 #include "occlude/io/mesh_io.h"
 
 namespace {
@@ -39,11 +47,12 @@ using namespace occlude;  // NOLINT: a small program
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 
-double ThreadSeconds() {
+double ClockSeconds(clockid_t clock) {
   timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  clock_gettime(clock, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
+double ThreadSeconds() { return ClockSeconds(CLOCK_THREAD_CPUTIME_ID); }
 
 /// Median thread CPU microseconds of f() over reps calls (one warm-up call first).
 template <class F>
@@ -70,6 +79,8 @@ struct Args {
   int reps = 15;
   int jitter = 3;
   std::string only;
+  double voxel_mm = 0.2;
+  int builds = 3;
   std::string profile;  ///< offset (mm) to repeat the oracle query at, for a profiler
   std::string compare;  ///< offsets (mm, comma-separated) for the field bound A/B comparison
 };
@@ -83,6 +94,8 @@ Args Parse(int argc, char** argv) {
     if (k == "--reps") a.reps = std::max(1, std::atoi(v.c_str()));
     if (k == "--jitter") a.jitter = std::max(1, std::atoi(v.c_str()));
     if (k == "--only") a.only = v;
+    if (k == "--voxel") a.voxel_mm = std::atof(v.c_str());
+    if (k == "--builds") a.builds = std::max(1, std::atoi(v.c_str()));
     if (k == "--profile") a.profile = v;
     if (k == "--compare-field-bound") a.compare = v;
   }
@@ -286,6 +299,88 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
   }
 }
 
+collision::OracleOptions BuildOptions(const Args& args) {
+  collision::OracleOptions options;
+  options.voxel_size_mm = args.voxel_mm;
+  return options;
+}
+
+void RunBuild(const std::shared_ptr<const io::TriangleMesh>& lower,
+              const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args) {
+  std::printf("\noracle builds at %.2f mm: wall s, process CPU s (all threads), MB, samples\n",
+              args.voxel_mm);
+  for (int i = 0; i < args.builds; ++i) {
+    const double wall0 = ClockSeconds(CLOCK_MONOTONIC);
+    const double cpu0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+    const collision::JawOracle oracle(lower, upper, BuildOptions(args));
+    std::printf("build %d: %.3f s wall, %.3f s CPU, %.1f MB, %zu samples\n", i,
+                ClockSeconds(CLOCK_MONOTONIC) - wall0,
+                ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0,
+                static_cast<double>(oracle.MemoryBytes()) / 1e6, oracle.num_samples());
+  }
+}
+
+void HashPoints(const std::vector<collision::SurfacePoint>& points, io::Hasher64* h) {
+  h->AddValue(static_cast<std::uint64_t>(points.size()));
+  for (const auto& p : points) {
+    for (int a = 0; a < 3; ++a) h->AddValue(p.p_L[a]);
+    h->AddValue(p.distance_mm);
+    h->AddValue(p.area_mm2);
+    h->AddValue(p.part);
+  }
+}
+
+void HashResult(const collision::OracleResult& r, io::Hasher64* h) {
+  for (const double v :
+       {r.max_penetration_mm, r.penetration_area_mm2, r.contact_area_mm2, r.min_distance_mm,
+        r.left_share, r.right_share, r.anterior_share, r.posterior_share, r.deepest_p_L.x(),
+        r.deepest_p_L.y(), r.deepest_p_L.z()}) {
+    h->AddValue(v);
+  }
+  for (const std::size_t n : {r.deep_samples, r.contact_samples, r.cells, r.samples_evaluated})
+    h->AddValue(static_cast<std::uint64_t>(n));
+  for (const auto& p : r.parts) {
+    h->AddValue(p.contact_area_mm2);
+    h->AddValue(p.penetration_area_mm2);
+    h->AddValue(p.max_penetration_mm);
+    h->AddValue(static_cast<std::uint64_t>(p.contact_samples));
+  }
+  HashPoints(r.contacts, h);
+  HashPoints(r.penetrations, h);
+  for (const auto& res : r.residuals) {
+    h->AddValue(res.distance_mm);
+    for (int i = 0; i < 6; ++i) h->AddValue(res.gradient[i]);
+    h->AddValue(res.area_mm2);
+  }
+}
+
+void RunDigest(const collision::JawOracle& oracle, const Args& args, const Vector3d& axis,
+               const Vector3d& pivot) {
+  std::mt19937 rng(7);
+  io::Hasher64 all;
+  std::size_t queries = 0;
+  for (const double offset : kOffsets) {
+    for (const auto& X : Poses(offset, axis, pivot, args.jitter, &rng)) {
+      for (const auto level :
+           {collision::AccuracyLevel::kVoxel, collision::AccuracyLevel::kSubVoxel,
+            collision::AccuracyLevel::kExact}) {
+        for (const bool residuals : {false, true}) {
+          collision::OracleRequest req;
+          req.level = level;
+          req.residuals = residuals;
+          req.pivot_L = pivot;
+          collision::OracleResult res;
+          oracle.Query(X, req, &res);
+          HashResult(res, &all);
+          ++queries;
+        }
+      }
+    }
+  }
+  std::printf("digest of %zu answers at %.2f mm: %s (%zu samples)\n", queries, args.voxel_mm,
+              io::HashHex(all.Finish()).c_str(), oracle.num_samples());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -391,6 +486,14 @@ int main(int argc, char** argv) {
         "%zu contacts\n",
         args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
         res.node_tests, res.samples_evaluated, res.contact_samples);
+    return 0;
+  }
+  if (args.only == "build") {
+    RunBuild(lower, upper, args);
+    return 0;
+  }
+  if (args.only == "digest") {
+    RunDigest(collision::JawOracle(lower, upper, BuildOptions(args)), args, axis, pivot);
     return 0;
   }
   collision::SphereTreeOptions topt;
