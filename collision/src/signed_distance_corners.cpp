@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -22,6 +21,7 @@
 #include "occlude/collision/closest_point.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
+#include "parallel.h"
 #include "signed_distance_detail.h"
 
 namespace occlude::collision {
@@ -78,25 +78,23 @@ void NarrowBandSdf::ScanCandidates(const CornerScratch& sc, std::size_t count,
 #endif
 }
 
-std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) const {
+std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners, int threads) const {
   std::vector<float> value(corners.num_voxels());
-  const auto& bricks = corners.bricks();
-  auto fill = [&](std::size_t first, std::size_t last) {
-    CornerScratch scratch;
-    scratch.seen.assign(mesh_->num_triangles(), 0);
-    for (std::size_t bi = first; bi < last; ++bi) BrickCornerValues(corners, bi, &scratch, &value);
-  };
-  // Two halves on two threads (each value is the exact distance; only the
-  // choice between equidistant triangles could depend on the split, which is
-  // fixed, so builds stay deterministic).
-  const std::size_t half = bricks.size() / 2;
-  if (bricks.size() < 64) {
-    fill(0, bricks.size());
-  } else {
-    std::thread other(fill, half, bricks.size());
-    fill(0, half);
-    other.join();
-  }
+  // Blocks of bricks, each starting without a hint: a corner's value is its exact distance
+  // whatever the order, and the hint (the previous corner's triangle) only decides between
+  // equidistant triangles, so fixed blocks keep the values independent of the thread count.
+  constexpr std::size_t kBricksPerBlock = 64;
+  const std::size_t bricks = corners.bricks().size();
+  std::vector<CornerScratch> scratch(static_cast<std::size_t>(std::max(1, threads)));
+  detail::ParallelFor((bricks + kBricksPerBlock - 1) / kBricksPerBlock, threads,
+                      [&](std::size_t block, int worker) {
+                        CornerScratch& sc = scratch[static_cast<std::size_t>(worker)];
+                        if (sc.seen.empty()) sc.seen.assign(mesh_->num_triangles(), 0);
+                        sc.hint = kNoHint;
+                        const std::size_t end = std::min(bricks, (block + 1) * kBricksPerBlock);
+                        for (std::size_t bi = block * kBricksPerBlock; bi < end; ++bi)
+                          BrickCornerValues(corners, bi, &sc, &value);
+                      });
   return value;
 }
 
