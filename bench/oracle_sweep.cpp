@@ -9,10 +9,11 @@
 //
 //   occlude_oracle_sweep [--case a-bite-3shape] [--axis y] [--reps 15] [--jitter 3]
 //                        [--only boolean|oracle|sdf|build|digest] [--profile OFFSET]
-//                        [--voxel 0.2] [--builds 3]
+//                        [--voxel 0.2] [--builds 3] [--threads 0]
 //
 // --only build builds the oracle (--voxel, default options otherwise, as `occlude bench`)
-// --builds times and prints each build's wall time and process CPU time (all threads).
+// --builds times and prints each build's wall time and process CPU time (all threads), with
+// OracleOptions::threads = --threads (0 = every core).
 // --only digest prints a hash of every answer (totals, parts, points, residuals) of the
 // voxel, sub-voxel and exact levels at the sweep's jittered poses: equal digests from two
 // builds of the library mean bit-identical answers.
@@ -81,6 +82,7 @@ struct Args {
   std::string only;
   double voxel_mm = 0.2;
   int builds = 3;
+  int threads = 0;      ///< OracleOptions::threads of --only build / digest
   std::string profile;  ///< offset (mm) to repeat the oracle query at, for a profiler
   std::string compare;  ///< offsets (mm, comma-separated) for the field bound A/B comparison
 };
@@ -96,6 +98,7 @@ Args Parse(int argc, char** argv) {
     if (k == "--only") a.only = v;
     if (k == "--voxel") a.voxel_mm = std::atof(v.c_str());
     if (k == "--builds") a.builds = std::max(1, std::atoi(v.c_str()));
+    if (k == "--threads") a.threads = std::max(0, std::atoi(v.c_str()));
     if (k == "--profile") a.profile = v;
     if (k == "--compare-field-bound") a.compare = v;
   }
@@ -302,6 +305,7 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
 collision::OracleOptions BuildOptions(const Args& args) {
   collision::OracleOptions options;
   options.voxel_size_mm = args.voxel_mm;
+  options.threads = args.threads;
   return options;
 }
 

@@ -84,6 +84,10 @@ struct OracleOptions {
   double field_bound_mm = 0.1;
   double field_bound_depth_mm = 0.3;
   std::optional<ArchFrame> arch;  ///< default: EstimateArchFrame with U as given
+  /// Threads of the build (0 = every core): the two jaws' structures and the independent
+  /// stages run concurrently, the heaviest loops in fixed blocks. The oracle is the same,
+  /// bit for bit, for any count; it only changes how long the build takes.
+  int threads = 0;
 };
 
 struct OracleRequest {
@@ -205,6 +209,21 @@ class JawOracle {
   // lower or (some of its connected components) wholly inside a closed lower component. One
   // interior test per upper component tells which; the samples of those inside count as deep.
   void CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
+
+  // Construction (oracle_build.cpp: the lower jaw's side; oracle_samples.cpp: the upper's).
+  // The two sides write disjoint members and run concurrently.
+  void BuildLowerSide(std::shared_ptr<const io::TriangleMesh> lower_L, int threads);
+  void BuildFieldBound(int threads);
+  void BuildInteriorRows();
+  void BuildUpperSide(std::shared_ptr<const io::TriangleMesh> upper_U, int threads);
+  /// The samples of the upper surface, grouped by voxel (CSR), and one per component.
+  void PlaceSamples(const io::TriangleMesh& upper_U, int threads);
+  void BuildVoxelSamples();
+  void BuildNodeLeafRanges();
+  /// Cell centres and radii, the samples' offsets and the voxels' spheres (the query's culls).
+  void BuildCellSpheres();
+  void BuildNodeSampleSpheres();
+  void BuildSamplesSphere();
 
   OracleOptions options_;
   SphereTree lower_, upper_;
