@@ -8,12 +8,14 @@
 // exact distances (p95 error, contacts within 0.05 mm missed).
 //
 //   occlude_oracle_sweep [--case a-bite-3shape] [--axis y] [--reps 15] [--jitter 3]
-//                        [--only boolean|oracle|sdf|build|digest] [--profile OFFSET]
+//                        [--only boolean|oracle|sdf|build|digest|saved] [--profile OFFSET]
 //                        [--voxel 0.2] [--builds 3] [--threads 0]
 //
 // --only build builds the oracle (--voxel, default options otherwise, as `occlude bench`)
 // --builds times and prints each build's wall time and process CPU time (all threads), with
 // OracleOptions::threads = --threads (0 = every core).
+// --only saved saves the oracle to a file, times --builds loads of it (cold: its pages dropped
+// from the page cache first; warm) and prints the digests of the built and loaded oracles.
 // --only digest prints a hash of every answer (totals, parts, points, residuals) of the
 // voxel, sub-voxel and exact levels at the sweep's jittered poses: equal digests from two
 // builds of the library mean bit-identical answers.
@@ -25,6 +27,9 @@
 //
 // Exits 0 with a message when the shared data folder is absent ($OCCLUDE_DATA_DIR
 // overrides ../shared/data beside the checkout).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -38,6 +43,7 @@
 
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "occlude/collision/oracle_file.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/io/content_hash.h"
 #include "occlude/io/mesh_io.h"
@@ -324,40 +330,6 @@ void RunBuild(const std::shared_ptr<const io::TriangleMesh>& lower,
   }
 }
 
-void HashPoints(const std::vector<collision::SurfacePoint>& points, io::Hasher64* h) {
-  h->AddValue(static_cast<std::uint64_t>(points.size()));
-  for (const auto& p : points) {
-    for (int a = 0; a < 3; ++a) h->AddValue(p.p_L[a]);
-    h->AddValue(p.distance_mm);
-    h->AddValue(p.area_mm2);
-    h->AddValue(p.part);
-  }
-}
-
-void HashResult(const collision::OracleResult& r, io::Hasher64* h) {
-  for (const double v :
-       {r.max_penetration_mm, r.penetration_area_mm2, r.contact_area_mm2, r.min_distance_mm,
-        r.left_share, r.right_share, r.anterior_share, r.posterior_share, r.deepest_p_L.x(),
-        r.deepest_p_L.y(), r.deepest_p_L.z()}) {
-    h->AddValue(v);
-  }
-  for (const std::size_t n : {r.deep_samples, r.contact_samples, r.cells, r.samples_evaluated})
-    h->AddValue(static_cast<std::uint64_t>(n));
-  for (const auto& p : r.parts) {
-    h->AddValue(p.contact_area_mm2);
-    h->AddValue(p.penetration_area_mm2);
-    h->AddValue(p.max_penetration_mm);
-    h->AddValue(static_cast<std::uint64_t>(p.contact_samples));
-  }
-  HashPoints(r.contacts, h);
-  HashPoints(r.penetrations, h);
-  for (const auto& res : r.residuals) {
-    h->AddValue(res.distance_mm);
-    for (int i = 0; i < 6; ++i) h->AddValue(res.gradient[i]);
-    h->AddValue(res.area_mm2);
-  }
-}
-
 void RunDigest(const collision::JawOracle& oracle, const Args& args, const Vector3d& axis,
                const Vector3d& pivot) {
   std::mt19937 rng(7);
@@ -375,7 +347,7 @@ void RunDigest(const collision::JawOracle& oracle, const Args& args, const Vecto
           req.pivot_L = pivot;
           collision::OracleResult res;
           oracle.Query(X, req, &res);
-          HashResult(res, &all);
+          collision::HashOracleResult(res, &all);
           ++queries;
         }
       }
@@ -383,6 +355,51 @@ void RunDigest(const collision::JawOracle& oracle, const Args& args, const Vecto
   }
   std::printf("digest of %zu answers at %.2f mm: %s (%zu samples)\n", queries, args.voxel_mm,
               io::HashHex(all.Finish()).c_str(), oracle.num_samples());
+}
+
+// Saves the oracle (bytes, then a file in the temporary folder), loads it --builds times with
+// the file's pages dropped from the page cache first (cold) and kept (warm), and prints the
+// digests of the built and the first loaded oracle (equal = bit-identical answers).
+void RunSaved(const std::shared_ptr<const io::TriangleMesh>& lower,
+              const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+              const Vector3d& axis, const Vector3d& pivot) {
+  const collision::OracleOptions options = BuildOptions(args);
+  const collision::JawOracle built(lower, upper, options);
+  double wall0 = ClockSeconds(CLOCK_MONOTONIC);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "occlude_oracle_sweep.oracle";
+  collision::SaveOracleFile(built, file);
+  std::printf("\nsaved oracle at %.2f mm: %.1f MB file, %.3f s to save (build %.3f s wall)\n",
+              args.voxel_mm, static_cast<double>(std::filesystem::file_size(file)) / 1e6,
+              ClockSeconds(CLOCK_MONOTONIC) - wall0, built.build_seconds());
+  {
+    const double t0 = ClockSeconds(CLOCK_MONOTONIC);
+    const std::string bytes = collision::SaveOracle(built);
+    std::printf("  to bytes: %.3f s wall\n", ClockSeconds(CLOCK_MONOTONIC) - t0);
+    for (const auto& section : collision::DescribeOracleBytes(bytes))
+      std::printf("  section %s: %.1f MB\n", section.tag.c_str(),
+                  static_cast<double>(section.size) / 1e6);
+  }
+  for (int i = 0; i < args.builds; ++i) {
+    for (const bool cold : {true, false}) {
+      if (cold) {
+        const int fd = ::open(file.c_str(), O_RDONLY);
+        if (fd >= 0) {
+          ::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+          ::close(fd);
+        }
+      }
+      wall0 = ClockSeconds(CLOCK_MONOTONIC);
+      const double cpu0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+      const collision::JawOracle loaded = collision::LoadOracleFile(file, lower, upper, options);
+      std::printf("load %d (%s): %.3f s wall, %.3f s CPU\n", i, cold ? "cold" : "warm",
+                  ClockSeconds(CLOCK_MONOTONIC) - wall0,
+                  ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0);
+      if (i == 0 && !cold) RunDigest(loaded, args, axis, pivot);
+    }
+  }
+  RunDigest(built, args, axis, pivot);
+  std::filesystem::remove(file);
 }
 
 }  // namespace
@@ -494,6 +511,10 @@ int main(int argc, char** argv) {
   }
   if (args.only == "build") {
     RunBuild(lower, upper, args);
+    return 0;
+  }
+  if (args.only == "saved") {
+    RunSaved(lower, upper, args, axis, pivot);
     return 0;
   }
   if (args.only == "digest") {

@@ -135,6 +135,7 @@ class DistanceBound {
   std::size_t MemoryBytes() const;
 
  private:
+  friend struct detail::OracleCodec;
   template <bool kEstimate>
   Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
   /// The first level a probe of this radius reads: a level whose cap is at

@@ -10,6 +10,9 @@
 
 namespace occlude::collision::detail {
 
+/// Writes and reads the built structures (oracle_file.h); a friend of the classes it saves.
+struct OracleCodec;
+
 /// Open-addressing hash from a 64-bit key (never ~0) to a 32-bit value:
 /// power-of-two capacity, load <= 3/4, linear probing, splitmix64 finaliser.
 class KeyIndexHash {
@@ -36,6 +39,7 @@ class KeyIndexHash {
   static std::uint64_t Mix(std::uint64_t x) { return io::Mix64(x); }
 
  private:
+  friend struct OracleCodec;
   struct Slot {
     std::uint64_t key = kEmpty;
     std::uint32_t value = 0;

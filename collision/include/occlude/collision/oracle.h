@@ -24,6 +24,7 @@
 #include "occlude/collision/collide.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/collision/sphere_tree.h"
+#include "occlude/io/content_hash.h"
 
 namespace occlude::collision {
 
@@ -191,7 +192,9 @@ class JawOracle {
   std::size_t MemoryBytes() const;
 
  private:
-  struct QueryContext;  // per-query constants and the field sampler (oracle_query.cpp)
+  friend struct detail::OracleCodec;
+  JawOracle() = default;  ///< empty, for the codec to fill (oracle_file.h)
+  struct QueryContext;    // per-query constants and the field sampler (oracle_query.cpp)
   /// Evaluates the samples (or, at voxel level, the voxel centroids) of one
   /// upper cell, described by q (oracle_evaluate.cpp).
   void EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* result) const;
@@ -270,5 +273,10 @@ class JawOracle {
   std::vector<bool> part_has_tooth_;
   double build_seconds_ = 0.0;
 };
+
+/// Adds an answer to `hash`, bit-exact: its totals, shares, deepest point, counts (samples,
+/// cells, samples evaluated; not node_tests), parts, point lists and residuals. Equal hashes
+/// over many queries mean bit-identical answers (determinism and saved-oracle checks).
+void HashOracleResult(const OracleResult& result, io::Hasher64* hash);
 
 }  // namespace occlude::collision

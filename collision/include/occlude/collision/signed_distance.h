@@ -71,6 +71,7 @@ class PseudoNormals {
   static constexpr double kZeroWeight = 1e-9;
 
  private:
+  friend struct detail::OracleCodec;
   std::vector<Eigen::Vector3f> faces_;     ///< per triangle
   std::vector<Eigen::Vector3f> edges_;     ///< 3 per triangle (edge k opposite corner k)
   std::vector<Eigen::Vector3f> vertices_;  ///< per vertex
@@ -172,6 +173,7 @@ class BrickSet {
   }
 
  private:
+  friend struct OracleCodec;
   Brick& At(std::uint64_t brick_key);
   void BuildDense();
   /// The dense index's entry for brick (x, y, z), or null outside its box (dense_ built).
@@ -259,6 +261,7 @@ class NarrowBandSdf {
 
  private:
   friend class SdfSampler;  // fast repeated lookups (sdf_sampler.h)
+  friend struct detail::OracleCodec;
 
   /// A triangle's corners and bounding sphere, stored in spatial (Morton) order
   /// so that the triangles of neighbouring voxels are close in memory.

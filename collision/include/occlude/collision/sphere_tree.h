@@ -126,6 +126,7 @@ class SphereTree {
                       double* radius) const;
 
  private:
+  friend struct detail::OracleCodec;
   std::shared_ptr<const io::TriangleMesh> mesh_;
   VoxelGrid grid_;
   Octree octree_;
