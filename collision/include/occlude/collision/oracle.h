@@ -195,6 +195,12 @@ class JawOracle {
   friend struct detail::OracleCodec;
   JawOracle() = default;  ///< empty, for the codec to fill (oracle_file.h)
   struct QueryContext;    // per-query constants and the field sampler (oracle_query.cpp)
+  /// The broad phase's request for `request`: against the field bound when it applies, else
+  /// the lower's voxels with the request's reach (oracle_query.cpp).
+  CellRequest BroadPhase(const OracleRequest& request) const;
+  /// Sets q's per-cell values for upper cell `node` (q->cell already at its centre's grid
+  /// point); false when its samples cannot count (culled).
+  bool PrepareCell(std::uint32_t node, std::uint32_t level_begin, QueryContext* q) const;
   /// Evaluates the samples (or, at voxel level, the voxel centroids) of one
   /// upper cell, described by q (oracle_evaluate.cpp).
   void EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* result) const;
