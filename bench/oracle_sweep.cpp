@@ -402,6 +402,98 @@ void RunSaved(const std::shared_ptr<const io::TriangleMesh>& lower,
   std::filesystem::remove(file);
 }
 
+// --compare-field-bound: the sub-voxel oracle with and without the field bound.
+void RunCompareFieldBound(const std::shared_ptr<const io::TriangleMesh>& lower,
+                          const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+                          const Vector3d& axis, const Vector3d& pivot) {
+  // The sub-voxel oracle with and without the field bound, built once each, queried in
+  // alternating blocks at the same poses (so that a noisy machine slows both alike).
+  collision::OracleOptions with, without;
+  without.field_bound_mm = -1.0;
+  const collision::JawOracle a(lower, upper, without), b(lower, upper, with);
+  std::printf(
+      "offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, "
+      "same\n");
+  std::mt19937 rng(7);
+  std::string list = args.compare;
+  for (std::size_t start = 0; start < list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const double offset = std::atof(list.substr(start, comma - start).c_str());
+    start = comma + 1;
+    const std::vector<Isometry3d> poses = Poses(offset, axis, pivot, 16, &rng);
+    collision::OracleRequest req;
+    collision::OracleResult ra, rb;
+    bool same = true;
+    std::vector<double> ta, tb;
+    for (int round = 0; round < 40; ++round) {
+      for (int which = 0; which < 2; ++which) {
+        const collision::JawOracle& o = which == 0 ? a : b;
+        collision::OracleResult& r = which == 0 ? ra : rb;
+        const double t0 = ThreadSeconds();
+        for (const Isometry3d& X : poses) o.Query(X, req, &r);
+        (which == 0 ? ta : tb)
+            .push_back(1e6 * (ThreadSeconds() - t0) / static_cast<double>(poses.size()));
+      }
+      same = same && ra.contact_samples == rb.contact_samples &&
+             ra.max_penetration_mm == rb.max_penetration_mm &&
+             ra.contact_area_mm2 == rb.contact_area_mm2 &&
+             ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
+             ra.deep_samples == rb.deep_samples;
+    }
+    std::sort(ta.begin(), ta.end());
+    std::sort(tb.begin(), tb.end());
+    const double ma = ta[ta.size() / 2], mb = tb[tb.size() / 2];
+    std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb,
+                ra.cells, rb.cells, ra.node_tests, rb.node_tests, same ? "yes" : "NO");
+  }
+}
+
+// --profile OFFSET: one query repeated for 10 s of thread CPU (for a profiler).
+void RunProfile(const std::shared_ptr<const io::TriangleMesh>& lower,
+                const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+                const Vector3d& axis, const Vector3d& /*pivot*/) {
+  collision::OracleOptions oopt;
+  if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
+  if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND"))
+    oopt.field_bound_mm = std::atof(bound);
+  const collision::JawOracle oracle(lower, upper, oopt);
+  const Isometry3d X =
+      Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
+  collision::OracleRequest req;
+  req.level = collision::AccuracyLevel::kSubVoxel;
+  if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
+    req.penetration_search_mm = std::atof(search);
+  collision::OracleResult res;
+  const double t0 = ThreadSeconds();
+  std::size_t n = 0;
+  // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
+  const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
+  const bool boolean = which != nullptr && std::string(which) == "boolean";
+  if (which != nullptr && std::string(which) == "voxel")
+    req.level = collision::AccuracyLevel::kVoxel;
+  collision::CollisionRequest creq;
+  creq.first_only = true;
+  creq.delta_mm = 0.1;
+  collision::CollisionResult cres;
+  while (ThreadSeconds() - t0 < 10.0) {
+    if (boolean) {
+      collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
+    } else {
+      oracle.Query(X, req, &res);
+    }
+    ++n;
+  }
+  if (boolean) {
+    std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0,
+                cres.bound_tests);
+  }
+  std::printf(
+      "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
+      "%zu contacts\n",
+      args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
+      res.node_tests, res.samples_evaluated, res.contact_samples);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -424,89 +516,11 @@ int main(int argc, char** argv) {
               lower->num_triangles(), upper->num_triangles(), args.axis, args.reps);
 
   if (!args.compare.empty()) {
-    // The sub-voxel oracle with and without the field bound, built once each, queried in
-    // alternating blocks at the same poses (so that a noisy machine slows both alike).
-    collision::OracleOptions with, without;
-    without.field_bound_mm = -1.0;
-    const collision::JawOracle a(lower, upper, without), b(lower, upper, with);
-    std::printf(
-        "offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, "
-        "same\n");
-    std::mt19937 rng(7);
-    std::string list = args.compare;
-    for (std::size_t start = 0; start < list.size();) {
-      const std::size_t comma = std::min(list.find(',', start), list.size());
-      const double offset = std::atof(list.substr(start, comma - start).c_str());
-      start = comma + 1;
-      const std::vector<Isometry3d> poses = Poses(offset, axis, pivot, 16, &rng);
-      collision::OracleRequest req;
-      collision::OracleResult ra, rb;
-      bool same = true;
-      std::vector<double> ta, tb;
-      for (int round = 0; round < 40; ++round) {
-        for (int which = 0; which < 2; ++which) {
-          const collision::JawOracle& o = which == 0 ? a : b;
-          collision::OracleResult& r = which == 0 ? ra : rb;
-          const double t0 = ThreadSeconds();
-          for (const Isometry3d& X : poses) o.Query(X, req, &r);
-          (which == 0 ? ta : tb)
-              .push_back(1e6 * (ThreadSeconds() - t0) / static_cast<double>(poses.size()));
-        }
-        same = same && ra.contact_samples == rb.contact_samples &&
-               ra.max_penetration_mm == rb.max_penetration_mm &&
-               ra.contact_area_mm2 == rb.contact_area_mm2 &&
-               ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
-               ra.deep_samples == rb.deep_samples;
-      }
-      std::sort(ta.begin(), ta.end());
-      std::sort(tb.begin(), tb.end());
-      const double ma = ta[ta.size() / 2], mb = tb[tb.size() / 2];
-      std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb,
-                  ra.cells, rb.cells, ra.node_tests, rb.node_tests, same ? "yes" : "NO");
-    }
+    RunCompareFieldBound(lower, upper, args, axis, pivot);
     return 0;
   }
   if (!args.profile.empty()) {
-    collision::OracleOptions oopt;
-    if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
-    if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND"))
-      oopt.field_bound_mm = std::atof(bound);
-    const collision::JawOracle oracle(lower, upper, oopt);
-    const Isometry3d X =
-        Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
-    collision::OracleRequest req;
-    req.level = collision::AccuracyLevel::kSubVoxel;
-    if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
-      req.penetration_search_mm = std::atof(search);
-    collision::OracleResult res;
-    const double t0 = ThreadSeconds();
-    std::size_t n = 0;
-    // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
-    const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
-    const bool boolean = which != nullptr && std::string(which) == "boolean";
-    if (which != nullptr && std::string(which) == "voxel")
-      req.level = collision::AccuracyLevel::kVoxel;
-    collision::CollisionRequest creq;
-    creq.first_only = true;
-    creq.delta_mm = 0.1;
-    collision::CollisionResult cres;
-    while (ThreadSeconds() - t0 < 10.0) {
-      if (boolean) {
-        collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
-      } else {
-        oracle.Query(X, req, &res);
-      }
-      ++n;
-    }
-    if (boolean) {
-      std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0,
-                  cres.bound_tests);
-    }
-    std::printf(
-        "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
-        "%zu contacts\n",
-        args.profile.c_str(), n, 1e6 * (ThreadSeconds() - t0) / static_cast<double>(n), res.cells,
-        res.node_tests, res.samples_evaluated, res.contact_samples);
+    RunProfile(lower, upper, args, axis, pivot);
     return 0;
   }
   if (args.only == "build") {
