@@ -8,7 +8,17 @@
 // exact distances (p95 error, contacts within 0.05 mm missed).
 //
 //   occlude_oracle_sweep [--case a-bite-3shape] [--axis y] [--reps 15] [--jitter 3]
-//                        [--only boolean|oracle|sdf] [--profile OFFSET]
+//                        [--only boolean|oracle|sdf|build|digest|saved] [--profile OFFSET]
+//                        [--voxel 0.2] [--builds 3] [--threads 0]
+//
+// --only build builds the oracle (--voxel, default options otherwise, as `occlude bench`)
+// --builds times and prints each build's wall time and process CPU time (all threads), with
+// OracleOptions::threads = --threads (0 = every core).
+// --only saved saves the oracle to a file, times --builds loads of it (cold: its pages dropped
+// from the page cache first; warm) and prints the digests of the built and loaded oracles.
+// --only digest prints a hash of every answer (totals, parts, points, residuals) of the
+// voxel, sub-voxel and exact levels at the sweep's jittered poses: equal digests from two
+// builds of the library mean bit-identical answers.
 //
 // --profile OFFSET repeats only the sub-voxel oracle query at that offset (no jitter) for
 // 10 s of thread CPU, for a profiler: perf record -g occlude_oracle_sweep --profile -0.2
@@ -17,6 +27,9 @@
 //
 // Exits 0 with a message when the shared data folder is absent ($OCCLUDE_DATA_DIR
 // overrides ../shared/data beside the checkout).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -32,7 +45,9 @@
 #include "occlude/clock.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
+#include "occlude/collision/oracle_file.h"
 #include "occlude/collision/signed_distance.h"
+#include "occlude/io/content_hash.h"
 #include "occlude/io/mesh_io.h"
 #include "session/jaw_pair.h"
 
@@ -41,6 +56,12 @@ namespace {
 using namespace occlude;  // NOLINT: a small program
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
+
+double ClockSeconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 /// Median thread CPU microseconds of f() over reps calls (one warm-up call first).
 template <class F>
@@ -62,6 +83,9 @@ struct Args {
   int reps = 15;
   int jitter = 3;
   std::string only;
+  double voxel_mm = 0.2;
+  int builds = 3;
+  int threads = 0;      ///< OracleOptions::threads of --only build / digest
   std::string profile;  ///< offset (mm) to repeat the oracle query at, for a profiler
   std::string compare;  ///< offsets (mm, comma-separated) for the field bound A/B comparison
 };
@@ -75,6 +99,9 @@ Args Parse(int argc, char** argv) {
     if (k == "--reps") a.reps = std::max(1, std::atoi(v.c_str()));
     if (k == "--jitter") a.jitter = std::max(1, std::atoi(v.c_str()));
     if (k == "--only") a.only = v;
+    if (k == "--voxel") a.voxel_mm = std::atof(v.c_str());
+    if (k == "--builds") a.builds = std::max(1, std::atoi(v.c_str()));
+    if (k == "--threads") a.threads = std::max(0, std::atoi(v.c_str()));
     if (k == "--profile") a.profile = v;
     if (k == "--compare-field-bound") a.compare = v;
   }
@@ -278,6 +305,192 @@ void RunSdf(const std::shared_ptr<const io::TriangleMesh>& lower, const collisio
   }
 }
 
+collision::OracleOptions BuildOptions(const Args& args) {
+  collision::OracleOptions options;
+  options.voxel_size_mm = args.voxel_mm;
+  options.threads = args.threads;
+  return options;
+}
+
+void RunBuild(const std::shared_ptr<const io::TriangleMesh>& lower,
+              const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args) {
+  std::printf("\noracle builds at %.2f mm: wall s, process CPU s (all threads), MB, samples\n",
+              args.voxel_mm);
+  for (int i = 0; i < args.builds; ++i) {
+    const double wall0 = ClockSeconds(CLOCK_MONOTONIC);
+    const double cpu0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+    const collision::JawOracle oracle(lower, upper, BuildOptions(args));
+    std::printf("build %d: %.3f s wall, %.3f s CPU, %.1f MB, %zu samples\n", i,
+                ClockSeconds(CLOCK_MONOTONIC) - wall0,
+                ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0,
+                static_cast<double>(oracle.MemoryBytes()) / 1e6, oracle.num_samples());
+  }
+}
+
+void RunDigest(const collision::JawOracle& oracle, const Args& args, const Vector3d& axis,
+               const Vector3d& pivot) {
+  std::mt19937 rng(7);
+  io::Hasher64 all;
+  std::size_t queries = 0;
+  for (const double offset : kOffsets) {
+    for (const auto& X : Poses(offset, axis, pivot, args.jitter, &rng)) {
+      for (const auto level :
+           {collision::AccuracyLevel::kVoxel, collision::AccuracyLevel::kSubVoxel,
+            collision::AccuracyLevel::kExact}) {
+        for (const bool residuals : {false, true}) {
+          collision::OracleRequest req;
+          req.level = level;
+          req.residuals = residuals;
+          req.pivot_L = pivot;
+          collision::OracleResult res;
+          oracle.Query(X, req, &res);
+          collision::HashOracleResult(res, &all);
+          ++queries;
+        }
+      }
+    }
+  }
+  std::printf("digest of %zu answers at %.2f mm: %s (%zu samples)\n", queries, args.voxel_mm,
+              io::HashHex(all.Finish()).c_str(), oracle.num_samples());
+}
+
+// Saves the oracle (bytes, then a file in the temporary folder), loads it --builds times with
+// the file's pages dropped from the page cache first (cold) and kept (warm), and prints the
+// digests of the built and the first loaded oracle (equal = bit-identical answers).
+void RunSaved(const std::shared_ptr<const io::TriangleMesh>& lower,
+              const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+              const Vector3d& axis, const Vector3d& pivot) {
+  const collision::OracleOptions options = BuildOptions(args);
+  const collision::JawOracle built(lower, upper, options);
+  double wall0 = ClockSeconds(CLOCK_MONOTONIC);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "occlude_oracle_sweep.oracle";
+  collision::SaveOracleFile(built, file);
+  std::printf("\nsaved oracle at %.2f mm: %.1f MB file, %.3f s to save (build %.3f s wall)\n",
+              args.voxel_mm, static_cast<double>(std::filesystem::file_size(file)) / 1e6,
+              ClockSeconds(CLOCK_MONOTONIC) - wall0, built.build_seconds());
+  {
+    const double t0 = ClockSeconds(CLOCK_MONOTONIC);
+    const std::string bytes = collision::SaveOracle(built);
+    std::printf("  to bytes: %.3f s wall\n", ClockSeconds(CLOCK_MONOTONIC) - t0);
+    for (const auto& section : collision::DescribeOracleBytes(bytes))
+      std::printf("  section %s: %.1f MB\n", section.tag.c_str(),
+                  static_cast<double>(section.size) / 1e6);
+  }
+  for (int i = 0; i < args.builds; ++i) {
+    for (const bool cold : {true, false}) {
+      if (cold) {
+        const int fd = ::open(file.c_str(), O_RDONLY);
+        if (fd >= 0) {
+          ::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
+          ::close(fd);
+        }
+      }
+      wall0 = ClockSeconds(CLOCK_MONOTONIC);
+      const double cpu0 = ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
+      const collision::JawOracle loaded = collision::LoadOracleFile(file, lower, upper, options);
+      std::printf("load %d (%s): %.3f s wall, %.3f s CPU\n", i, cold ? "cold" : "warm",
+                  ClockSeconds(CLOCK_MONOTONIC) - wall0,
+                  ClockSeconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0);
+      if (i == 0 && !cold) RunDigest(loaded, args, axis, pivot);
+    }
+  }
+  RunDigest(built, args, axis, pivot);
+  std::filesystem::remove(file);
+}
+
+// --compare-field-bound: the sub-voxel oracle with and without the field bound.
+void RunCompareFieldBound(const std::shared_ptr<const io::TriangleMesh>& lower,
+                          const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+                          const Vector3d& axis, const Vector3d& pivot) {
+  // The sub-voxel oracle with and without the field bound, built once each, queried in
+  // alternating blocks at the same poses (so that a noisy machine slows both alike).
+  collision::OracleOptions with, without;
+  without.field_bound_mm = -1.0;
+  const collision::JawOracle a(lower, upper, without), b(lower, upper, with);
+  std::printf(
+      "offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, "
+      "same\n");
+  std::mt19937 rng(7);
+  std::string list = args.compare;
+  for (std::size_t start = 0; start < list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const double offset = std::atof(list.substr(start, comma - start).c_str());
+    start = comma + 1;
+    const std::vector<Isometry3d> poses = Poses(offset, axis, pivot, 16, &rng);
+    collision::OracleRequest req;
+    collision::OracleResult ra, rb;
+    bool same = true;
+    std::vector<double> ta, tb;
+    for (int round = 0; round < 40; ++round) {
+      for (int which = 0; which < 2; ++which) {
+        const collision::JawOracle& o = which == 0 ? a : b;
+        collision::OracleResult& r = which == 0 ? ra : rb;
+        const double t0 = ThreadCpuSeconds();
+        for (const Isometry3d& X : poses) o.Query(X, req, &r);
+        (which == 0 ? ta : tb)
+            .push_back(1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(poses.size()));
+      }
+      same = same && ra.contact_samples == rb.contact_samples &&
+             ra.max_penetration_mm == rb.max_penetration_mm &&
+             ra.contact_area_mm2 == rb.contact_area_mm2 &&
+             ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
+             ra.deep_samples == rb.deep_samples;
+    }
+    std::sort(ta.begin(), ta.end());
+    std::sort(tb.begin(), tb.end());
+    const double ma = ta[ta.size() / 2], mb = tb[tb.size() / 2];
+    std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb,
+                ra.cells, rb.cells, ra.node_tests, rb.node_tests, same ? "yes" : "NO");
+  }
+}
+
+// --profile OFFSET: one query repeated for 10 s of thread CPU (for a profiler).
+void RunProfile(const std::shared_ptr<const io::TriangleMesh>& lower,
+                const std::shared_ptr<const io::TriangleMesh>& upper, const Args& args,
+                const Vector3d& axis, const Vector3d& /*pivot*/) {
+  collision::OracleOptions oopt;
+  if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
+  if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND"))
+    oopt.field_bound_mm = std::atof(bound);
+  const collision::JawOracle oracle(lower, upper, oopt);
+  const Isometry3d X =
+      Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
+  collision::OracleRequest req;
+  req.level = collision::AccuracyLevel::kSubVoxel;
+  if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
+    req.penetration_search_mm = std::atof(search);
+  collision::OracleResult res;
+  const double t0 = ThreadCpuSeconds();
+  std::size_t n = 0;
+  // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
+  const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
+  const bool boolean = which != nullptr && std::string(which) == "boolean";
+  if (which != nullptr && std::string(which) == "voxel")
+    req.level = collision::AccuracyLevel::kVoxel;
+  collision::CollisionRequest creq;
+  creq.first_only = true;
+  creq.delta_mm = 0.1;
+  collision::CollisionResult cres;
+  while (ThreadCpuSeconds() - t0 < 10.0) {
+    if (boolean) {
+      collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
+    } else {
+      oracle.Query(X, req, &res);
+    }
+    ++n;
+  }
+  if (boolean) {
+    std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0,
+                cres.bound_tests);
+  }
+  std::printf(
+      "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
+      "%zu contacts\n",
+      args.profile.c_str(), n, 1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(n), res.cells,
+      res.node_tests, res.samples_evaluated, res.contact_samples);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -301,89 +514,23 @@ int main(int argc, char** argv) {
               lower->num_triangles(), upper->num_triangles(), args.axis, args.reps);
 
   if (!args.compare.empty()) {
-    // The sub-voxel oracle with and without the field bound, built once each, queried in
-    // alternating blocks at the same poses (so that a noisy machine slows both alike).
-    collision::OracleOptions with, without;
-    without.field_bound_mm = -1.0;
-    const collision::JawOracle a(lower, upper, without), b(lower, upper, with);
-    std::printf(
-        "offset_mm, surface voxels + reach us, field bound us, ratio, cells a/b, node tests a/b, "
-        "same\n");
-    std::mt19937 rng(7);
-    std::string list = args.compare;
-    for (std::size_t start = 0; start < list.size();) {
-      const std::size_t comma = std::min(list.find(',', start), list.size());
-      const double offset = std::atof(list.substr(start, comma - start).c_str());
-      start = comma + 1;
-      const std::vector<Isometry3d> poses = Poses(offset, axis, pivot, 16, &rng);
-      collision::OracleRequest req;
-      collision::OracleResult ra, rb;
-      bool same = true;
-      std::vector<double> ta, tb;
-      for (int round = 0; round < 40; ++round) {
-        for (int which = 0; which < 2; ++which) {
-          const collision::JawOracle& o = which == 0 ? a : b;
-          collision::OracleResult& r = which == 0 ? ra : rb;
-          const double t0 = ThreadCpuSeconds();
-          for (const Isometry3d& X : poses) o.Query(X, req, &r);
-          (which == 0 ? ta : tb)
-              .push_back(1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(poses.size()));
-        }
-        same = same && ra.contact_samples == rb.contact_samples &&
-               ra.max_penetration_mm == rb.max_penetration_mm &&
-               ra.contact_area_mm2 == rb.contact_area_mm2 &&
-               ra.penetration_area_mm2 == rb.penetration_area_mm2 &&
-               ra.deep_samples == rb.deep_samples;
-      }
-      std::sort(ta.begin(), ta.end());
-      std::sort(tb.begin(), tb.end());
-      const double ma = ta[ta.size() / 2], mb = tb[tb.size() / 2];
-      std::printf("%+.2f, %.1f, %.1f, %.2f, %zu/%zu, %zu/%zu, %s\n", offset, ma, mb, ma / mb,
-                  ra.cells, rb.cells, ra.node_tests, rb.node_tests, same ? "yes" : "NO");
-    }
+    RunCompareFieldBound(lower, upper, args, axis, pivot);
     return 0;
   }
   if (!args.profile.empty()) {
-    collision::OracleOptions oopt;
-    if (const char* level = std::getenv("OCCLUDE_CELL_LEVEL")) oopt.cell_level = std::atoi(level);
-    if (const char* bound = std::getenv("OCCLUDE_FIELD_BOUND"))
-      oopt.field_bound_mm = std::atof(bound);
-    const collision::JawOracle oracle(lower, upper, oopt);
-    const Isometry3d X =
-        Eigen::Translation3d(std::atof(args.profile.c_str()) * axis) * Isometry3d::Identity();
-    collision::OracleRequest req;
-    req.level = collision::AccuracyLevel::kSubVoxel;
-    if (const char* search = std::getenv("OCCLUDE_PENETRATION_SEARCH"))
-      req.penetration_search_mm = std::atof(search);
-    collision::OracleResult res;
-    const double t0 = ThreadCpuSeconds();
-    std::size_t n = 0;
-    // $OCCLUDE_PROFILE_QUERY=boolean: the explicit boolean Collide on the oracle's trees instead.
-    const char* which = std::getenv("OCCLUDE_PROFILE_QUERY");
-    const bool boolean = which != nullptr && std::string(which) == "boolean";
-    if (which != nullptr && std::string(which) == "voxel")
-      req.level = collision::AccuracyLevel::kVoxel;
-    collision::CollisionRequest creq;
-    creq.first_only = true;
-    creq.delta_mm = 0.1;
-    collision::CollisionResult cres;
-    while (ThreadCpuSeconds() - t0 < 10.0) {
-      if (boolean) {
-        collision::Collide(oracle.lower_tree(), oracle.upper_tree(), X, creq, &cres);
-      } else {
-        oracle.Query(X, req, &res);
-      }
-      ++n;
-    }
-    if (boolean) {
-      std::printf("profile: boolean, overlap %d, %zu bound tests\n", cres.overlap ? 1 : 0,
-                  cres.bound_tests);
-    }
-    std::printf(
-        "profile: offset %s mm, %zu queries, %.1f us each, %zu cells, %zu node tests, %zu samples, "
-        "%zu contacts\n",
-        args.profile.c_str(), n, 1e6 * (ThreadCpuSeconds() - t0) / static_cast<double>(n),
-        res.cells, res.node_tests, res.samples_evaluated, res.contact_samples);
+    RunProfile(lower, upper, args, axis, pivot);
+    return 0;
+  }
+  if (args.only == "build") {
+    RunBuild(lower, upper, args);
+    return 0;
+  }
+  if (args.only == "saved") {
+    RunSaved(lower, upper, args, axis, pivot);
+    return 0;
+  }
+  if (args.only == "digest") {
+    RunDigest(collision::JawOracle(lower, upper, BuildOptions(args)), args, axis, pivot);
     return 0;
   }
   collision::SphereTreeOptions topt;

@@ -1,5 +1,7 @@
 // DistanceBound: the capped, exact cell-centre distances to the surface voxels
-// by three separable 1-D minimum passes over sparse 8x8x8 bricks of bytes.
+// by three separable 1-D minimum passes over sparse 8x8x8 bricks of bytes, each
+// pass a gather per destination brick (rows of 64 cells, saturating byte adds and
+// minima), the bricks in fixed blocks on the build's threads.
 #include "occlude/collision/distance_bound.h"
 
 #include <algorithm>
@@ -8,7 +10,12 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "occlude/collision/morton.h"
+#include "parallel.h"
 
 namespace occlude::collision {
 namespace {
@@ -20,11 +27,13 @@ std::uint64_t BrickKey(const Eigen::Vector3i& b) { return detail::BoundBrickKey(
 int CellIndex(int x, int y, int z) { return detail::BoundCellIndex(x, y, z); }
 int FloorInt(double x) { return detail::FloorInt(x); }
 
+using Brick = std::array<std::uint8_t, 512>;  // cell x + 8 y + 64 z
+
 // Bricks under construction: a hash from brick key to index, every new brick
 // filled with the cap. Indices stay valid as bricks are added (pointers do not).
 struct BrickMap {
   detail::KeyIndexHash index;
-  std::vector<std::array<std::uint8_t, 512>> bricks;
+  std::vector<Brick> bricks;
   std::vector<Eigen::Vector3i> coords;
   std::uint8_t cap = 0;
 
@@ -39,55 +48,173 @@ struct BrickMap {
     }
     return i;
   }
+  const Brick* Find(const Eigen::Vector3i& b) const {
+    const std::uint32_t i = index.Find(BrickKey(b));
+    return i == detail::KeyIndexHash::kNotFound ? nullptr : &bricks[i];
+  }
 };
 
-// One separable pass along `axis`: dst(c) = min over |d| <= K of src(c - d e_axis) + t(d),
-// t(d) = (2|d| - 1)^2 (t(0) = 0), capped.
-BrickMap Pass(const BrickMap& src, int axis, const std::vector<int>& t) {
-  BrickMap dst;
-  dst.cap = src.cap;
-  dst.index.Reset(2 * src.bricks.size());
-  const int cap = src.cap;
-  for (std::size_t bi = 0; bi < src.bricks.size(); ++bi) {
-    const Eigen::Vector3i b = src.coords[bi];
-    std::int64_t neighbour[3] = {-1, -1, -1};  // dst bricks at b + (k - 1) e_axis, made on demand
-    for (int z = 0; z < kBrickEdge; ++z) {
-      for (int y = 0; y < kBrickEdge; ++y) {
-        for (int x = 0; x < kBrickEdge; ++x) {
-          const int v = src.bricks[bi][static_cast<std::size_t>(CellIndex(x, y, z))];
-          if (v >= cap) continue;
-          int local[3] = {x, y, z};
-          const int along = local[axis];
-          for (int d = 0; d < static_cast<int>(t.size()); ++d) {
-            const int w = v + t[static_cast<std::size_t>(d)];
-            if (w >= cap) break;  // t grows with |d|
-            for (const int sd : {d, -d}) {
-              const int pos = along + sd;
-              const int k = pos < 0 ? 0 : (pos >= kBrickEdge ? 2 : 1);
-              if (neighbour[k] < 0) {
-                Eigen::Vector3i nb = b;
-                nb[axis] += k - 1;
-                neighbour[k] = dst.At(nb);
-              }
-              local[axis] = pos - (k - 1) * kBrickEdge;
-              std::uint8_t& out =
-                  dst.bricks[static_cast<std::size_t>(neighbour[k])]
-                            [static_cast<std::size_t>(CellIndex(local[0], local[1], local[2]))];
-              if (w < out) out = static_cast<std::uint8_t>(w);
-              if (d == 0) break;
-            }
-          }
-        }
+// Index of cell (along, rest) of a brick, `along` the coordinate on `axis` and `rest` = u + 8 w
+// for the other two in increasing axis order: the layout a pass reads rows of.
+int PassCell(int axis, int along, int rest) {
+  const int u = rest & 7, w = rest >> 3;
+  if (axis == 0) return CellIndex(along, u, w);
+  if (axis == 1) return CellIndex(u, along, w);
+  return CellIndex(u, w, along);
+}
+
+// Three bricks along `axis` (below, the brick, above; null = all at the cap) as 24 rows of 64
+// cells, row = the coordinate along the axis + 8.
+void GatherRows(const std::array<const Brick*, 3>& bricks, int axis, std::uint8_t cap,
+                std::uint8_t* rows) {
+  for (int k = 0; k < 3; ++k) {
+    std::uint8_t* out = rows + 512 * k;
+    if (bricks[static_cast<std::size_t>(k)] == nullptr) {
+      std::fill(out, out + 512, cap);
+    } else if (axis == 2) {
+      std::copy(bricks[static_cast<std::size_t>(k)]->begin(),
+                bricks[static_cast<std::size_t>(k)]->end(), out);
+    } else {
+      const Brick& b = *bricks[static_cast<std::size_t>(k)];
+      for (int along = 0; along < kBrickEdge; ++along) {
+        for (int rest = 0; rest < 64; ++rest)
+          out[64 * along + rest] = b[static_cast<std::size_t>(PassCell(axis, along, rest))];
       }
     }
   }
+}
+
+// out[i] = min(out[i], row[i] + add) over 64 cells, saturating at 255 (above every cap).
+void MinRow(const std::uint8_t* row, std::uint8_t add, std::uint8_t* out) {
+#if defined(__SSE2__)
+  const __m128i a = _mm_set1_epi8(static_cast<char>(add));
+  for (int i = 0; i < 64; i += 16) {
+    const __m128i v = _mm_adds_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i)), a);
+    auto* o = reinterpret_cast<__m128i*>(out + i);
+    _mm_storeu_si128(o, _mm_min_epu8(_mm_loadu_si128(o), v));
+  }
+#else
+  for (int i = 0; i < 64; ++i) {
+    out[i] = static_cast<std::uint8_t>(std::min(255, std::min<int>(out[i], row[i] + add)));
+  }
+#endif
+}
+
+// One brick of a pass: dst(c) = min(cap, min over |d| <= K of src(c - d e_axis) + t(d)) from
+// the source bricks below, at and above it. False when every cell stays at the cap.
+bool PassBrick(const std::array<const Brick*, 3>& src, int axis, const std::vector<int>& t,
+               std::uint8_t cap, Brick* dst) {
+  std::array<std::uint8_t, 3 * 512> rows;
+  GatherRows(src, axis, cap, rows.data());
+  std::array<std::uint8_t, 512> out;
+  out.fill(cap);
+  const int reach = static_cast<int>(t.size()) - 1;  // K < 8: the neighbours suffice
+  for (int along = 0; along < kBrickEdge; ++along) {
+    for (int d = -reach; d <= reach; ++d) {
+      MinRow(rows.data() + 64 * (kBrickEdge + along + d),
+             static_cast<std::uint8_t>(std::min(255, t[static_cast<std::size_t>(std::abs(d))])),
+             out.data() + 64 * along);
+    }
+  }
+  bool useful = false;
+  for (int along = 0; along < kBrickEdge; ++along) {
+    for (int rest = 0; rest < 64; ++rest) {
+      const std::uint8_t v = out[static_cast<std::size_t>(64 * along + rest)];
+      useful = useful || v < cap;
+      (*dst)[static_cast<std::size_t>(PassCell(axis, along, rest))] = v;
+    }
+  }
+  return useful;
+}
+
+// The bricks a pass along `axis` may fill: every source brick and its two neighbours along
+// the axis, each once, in a fixed order (so that the result does not depend on threads).
+std::vector<Eigen::Vector3i> PassCandidates(const BrickMap& src, int axis) {
+  detail::KeyIndexHash seen;
+  seen.Reset(3 * src.coords.size());
+  std::vector<Eigen::Vector3i> out;
+  out.reserve(3 * src.coords.size());
+  for (const Eigen::Vector3i& b : src.coords) {
+    for (int k = -1; k <= 1; ++k) {
+      Eigen::Vector3i c = b;
+      c[axis] += k;
+      bool inserted = false;
+      seen.Insert(BrickKey(c), 0, &inserted);
+      if (inserted) out.push_back(c);
+    }
+  }
+  return out;
+}
+
+// One separable pass along `axis` (a gather per destination brick, in blocks on `threads`):
+// dst(c) = min over |d| <= K of src(c - d e_axis) + t(d), t(d) = (2|d| - 1)^2 (t(0) = 0),
+// capped; bricks left all at the cap are dropped.
+BrickMap Pass(const BrickMap& src, int axis, const std::vector<int>& t, int threads) {
+  const std::vector<Eigen::Vector3i> candidates = PassCandidates(src, axis);
+  constexpr std::size_t kBlock = 256;  // bricks per work item
+  const std::size_t blocks = (candidates.size() + kBlock - 1) / kBlock;
+  std::vector<std::vector<Brick>> kept(blocks);  // per block: the bricks below the cap
+  std::vector<std::vector<std::uint32_t>> which(blocks);
+  detail::ParallelFor(blocks, threads, [&](std::size_t block, int) {
+    const std::size_t end = std::min(candidates.size(), (block + 1) * kBlock);
+    Brick brick;
+    for (std::size_t i = block * kBlock; i < end; ++i) {
+      std::array<const Brick*, 3> near;
+      for (int k = 0; k < 3; ++k) {
+        Eigen::Vector3i b = candidates[i];
+        b[axis] += k - 1;
+        near[static_cast<std::size_t>(k)] = src.Find(b);
+      }
+      if (!PassBrick(near, axis, t, src.cap, &brick)) continue;
+      kept[block].push_back(brick);
+      which[block].push_back(static_cast<std::uint32_t>(i));
+    }
+  });
+  BrickMap dst;
+  dst.cap = src.cap;
+  std::size_t total = 0;
+  for (const auto& k : kept) total += k.size();
+  dst.index.Reset(total);
+  dst.bricks.reserve(total);
+  dst.coords.reserve(total);
+  for (std::size_t block = 0; block < blocks; ++block) {
+    for (std::size_t j = 0; j < kept[block].size(); ++j) {
+      const Eigen::Vector3i& c = candidates[which[block][j]];
+      bool inserted = false;
+      dst.index.Insert(BrickKey(c), static_cast<std::uint32_t>(dst.bricks.size()), &inserted);
+      dst.bricks.push_back(kept[block][j]);
+      dst.coords.push_back(c);
+    }
+    std::vector<Brick>().swap(kept[block]);
+  }
   return dst;
+}
+
+// The level's occupied cells (value 0) in bricks filled with the cap: the cells of the
+// surface voxels' keys >> 3 level (sorted keys: consecutive ones mostly share a brick).
+BrickMap OccupiedCells(const VoxelGrid& grid, int level, std::uint8_t cap) {
+  BrickMap occupied;
+  occupied.cap = cap;
+  occupied.index.Reset((grid.surface_keys.size() >> (2 * level)) / 16 + 16);
+  const int m = kBrickEdge - 1;
+  Eigen::Vector3i last_brick(-1, -1, -1);
+  std::uint32_t last = 0;
+  for (const std::uint64_t key : grid.surface_keys) {
+    const Eigen::Vector3i v(MortonDecode(key >> (3 * level)));  // the level's cell
+    const Eigen::Vector3i b(v.x() >> kBrickBits, v.y() >> kBrickBits, v.z() >> kBrickBits);
+    if (b != last_brick || occupied.bricks.empty()) {
+      last = occupied.At(b);
+      last_brick = b;
+    }
+    occupied.bricks[last][static_cast<std::size_t>(CellIndex(v.x() & m, v.y() & m, v.z() & m))] = 0;
+  }
+  return occupied;
 }
 
 }  // namespace
 
 DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
-                                   const std::vector<int>& levels) {
+                                   const std::vector<int>& levels, int threads) {
   if (max_voxels < 1 || max_voxels > kMaxVoxels) {
     throw std::invalid_argument("DistanceBound::Build: max_voxels must be in [1, " +
                                 std::to_string(kMaxVoxels) + "]");
@@ -97,10 +224,12 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
       throw std::invalid_argument("DistanceBound::Build: levels must be increasing, in [0, 20]");
     }
   }
+  const int workers = detail::ResolveThreads(threads);
   DistanceBound out;
   out.origin_ = grid.origin_F;
   if (grid.surface_keys.empty() || !(grid.voxel_size_mm > 0.0)) return out;
-  for (const int level : levels) out.levels_.push_back(BuildLevel(grid, max_voxels, level));
+  for (const int level : levels)
+    out.levels_.push_back(BuildLevel(grid, max_voxels, level, workers));
   out.finest_level_ = levels.empty() ? 0 : levels[0];
   for (std::size_t l = 0; l < out.levels_.size(); ++l) {
     out.levels_[l].shift = levels[l] - levels[0];
@@ -109,7 +238,8 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   return out;
 }
 
-DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_voxels, int level) {
+DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_voxels, int level,
+                                               int threads) {
   Level out;
   out.s = std::ldexp(grid.voxel_size_mm, level);
   out.inv_s = 1.0 / out.s;
@@ -125,32 +255,13 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
 
   std::vector<int> t;  // per-axis term for |d| = 0..max_voxels
   for (int d = 0; d <= max_voxels; ++d) t.push_back(d == 0 ? 0 : (2 * d - 1) * (2 * d - 1));
-  BrickMap occupied;
-  occupied.cap = out.cap;
-  occupied.index.Reset((grid.surface_keys.size() >> (2 * level)) / 16 + 16);
-  const int m = kBrickEdge - 1;
-  for (const std::uint64_t key : grid.surface_keys) {
-    const Eigen::Vector3i v(MortonDecode(key >> (3 * level)));  // the level's cell
-    const std::uint32_t b =
-        occupied.At(Eigen::Vector3i(v.x() >> kBrickBits, v.y() >> kBrickBits, v.z() >> kBrickBits));
-    occupied.bricks[b][static_cast<std::size_t>(CellIndex(v.x() & m, v.y() & m, v.z() & m))] = 0;
-  }
-  BrickMap field = Pass(Pass(Pass(occupied, 0, t), 1, t), 2, t);
-  // Keep the bricks holding some value below the cap (others read as the cap anyway).
-  out.index.Reset(field.bricks.size());
-  std::vector<Eigen::Vector3i> kept;
-  for (std::size_t i = 0; i < field.bricks.size(); ++i) {
-    bool useful = false;
-    for (const std::uint8_t v : field.bricks[i]) useful = useful || v < out.cap;
-    if (!useful) continue;
-    bool inserted = false;
-    out.index.Insert(BrickKey(field.coords[i]), static_cast<std::uint32_t>(out.bricks.size()),
-                     &inserted);
-    out.bricks.push_back(field.bricks[i]);
-    kept.push_back(field.coords[i]);
-  }
+  BrickMap field = OccupiedCells(grid, level, out.cap);
+  for (int axis = 0; axis < 3; ++axis) field = Pass(field, axis, t, threads);
+  // Every brick left holds some value below the cap (the others read as the cap anyway).
+  out.index = std::move(field.index);
+  out.bricks = std::move(field.bricks);
   out.bricks.shrink_to_fit();
-  out.BuildTable(kept);
+  out.BuildTable(field.coords);
   return out;
 }
 

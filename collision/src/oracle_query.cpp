@@ -52,7 +52,80 @@ void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
   r->cells = r->samples_evaluated = r->node_tests = 0;
 }
 
+// Left/right and anterior/posterior shares as fractions of their sums.
+void NormalizeShares(OracleResult* result) {
+  const double lr = result->left_share + result->right_share;
+  const double ap = result->anterior_share + result->posterior_share;
+  if (lr > 0) {
+    result->left_share /= lr;
+    result->right_share /= lr;
+  }
+  if (ap > 0) {
+    result->anterior_share /= ap;
+    result->posterior_share /= ap;
+  }
+}
+
 }  // namespace
+
+CellRequest JawOracle::BroadPhase(const OracleRequest& request) const {
+  CellRequest cells;
+  cells.cell_level = options_.cell_level;
+  cells.a_level = options_.lower_level;
+  cells.distance_bound = options_.distance_bound;
+  // A sample within `reach` of the lower surface lies in a reported cell; with
+  // the field bound, every sample whose value lies in [-search, outer] lies in
+  // one of its voxels.
+  const double outer =
+      std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
+  const bool field_bound = request.level != AccuracyLevel::kExact && request.cull &&
+                           !field_bound_.empty() && outer <= options_.field_bound_mm &&
+                           request.penetration_search_mm <= options_.field_bound_depth_mm;
+  cells.reach_mm = field_bound ? kFieldBoundSlackMm : Reach(request);
+  cells.a_bound = field_bound ? &field_bound_ : nullptr;
+  cells.b_spheres = node_sample_sphere_U_.empty() ? nullptr : node_sample_sphere_U_.data();
+  return cells;
+}
+
+// Each cell is tested at the centre c of its samples' bounding box, r being
+// their largest distance from c (QueryContext::Irrelevant; outside the band
+// the lower's distance bound stands in for the field). Unknown samples
+// (outside the band) are on the centre's side when the centre is unknown
+// too and r < band (a segment shorter than the band from a point beyond it
+// does not reach the surface), and outside when the centre is known and
+// Irrelevant's deep test passes.
+bool JawOracle::PrepareCell(std::uint32_t node, std::uint32_t level_begin, QueryContext* q) const {
+  const OracleRequest& request = q->request;
+  // At voxel level a point's value is the field at its voxel's centre,
+  // within 0.866 s of the point: the cell's reach grows by that much.
+  const double r = static_cast<double>(cell_radius_[node - level_begin]) +
+                   (request.level == AccuracyLevel::kVoxel ? q->interp_error : 0.0);
+  const Eigen::Vector3d c_U = cell_center_U_[node - level_begin].cast<double>();
+  q->cell_centre_U = cell_center_U_[node - level_begin];
+  float d = 0.0f;
+  q->cell_known = q->sampler.Value(q->cell.base, q->cell.local, &d);
+  q->cell_d = static_cast<double>(d);
+  q->cell_r = r;
+  if (q->cell_known) {
+    if (request.cull && q->Irrelevant(q->cell_d, r)) return false;
+    q->unknown_side = q->cell_d > r + q->interp_error - q->band_mm ? UnknownSide::kExterior
+                                                                   : UnknownSide::kMaybeInterior;
+  } else if (r < q->band_mm) {
+    const Eigen::Vector3d c_L = q->X_LU * c_U;
+    q->unknown_side = LowerInterior(c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
+    // Outside, the lower's voxel cubes (which hold its surface) are at least
+    // LowerBound away from c, so a sample within r has D >= that - r and its
+    // interpolated value (within interp_error of D) is above the outer band.
+    if (request.cull && q->unknown_side == UnknownSide::kExterior &&
+        lower_.distance_bound().LowerBound(c_L) - r - q->interp_error >
+            q->outer + QueryContext::kSlackMm) {
+      return false;
+    }
+  } else {
+    q->unknown_side = UnknownSide::kMaybeInterior;
+  }
+  return true;
+}
 
 void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& request,
                       OracleResult* result) const {
@@ -63,36 +136,13 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
     result->parts[p].tooth_number =
         p < upper_.mesh().parts.size() ? upper_.mesh().parts[p].tooth_number : 0;
   }
-  CellRequest cells;
-  cells.cell_level = options_.cell_level;
-  cells.a_level = options_.lower_level;
-  cells.distance_bound = options_.distance_bound;
-  // A sample within `reach` of the lower surface lies in a reported cell; with
-  // the field bound, every sample whose value lies in [-search, outer] lies in
-  // one of its voxels.
-  const double reach = Reach(request);
-  const double outer =
-      std::max(request.contact_band_mm, request.residuals ? request.residual_band_mm : 0.0);
-  const bool field_bound = request.level != AccuracyLevel::kExact && request.cull &&
-                           !field_bound_.empty() && outer <= options_.field_bound_mm &&
-                           request.penetration_search_mm <= options_.field_bound_depth_mm;
-  cells.reach_mm = field_bound ? kFieldBoundSlackMm : reach;
-  cells.a_bound = field_bound ? &field_bound_ : nullptr;
-  cells.b_spheres = node_sample_sphere_U_.empty() ? nullptr : node_sample_sphere_U_.data();
   thread_local CellResult found;
-  CollectCells(lower_, upper_, X_LU, cells, &found);
+  CollectCells(lower_, upper_, X_LU, BroadPhase(request), &found);
   result->cells = found.cells_b.size();
   result->node_tests = found.node_tests;
-  // Each cell is tested at the centre c of its samples' bounding box, r being
-  // their largest distance from c (QueryContext::Irrelevant; outside the band
-  // the lower's distance bound stands in for the field). Unknown samples
-  // (outside the band) are on the centre's side when the centre is unknown
-  // too and r < band (a segment shorter than the band from a point beyond it
-  // does not reach the surface), and outside when the centre is known and
-  // Irrelevant's deep test passes.
   const int level = std::min(options_.cell_level, upper_.octree().top_level);
   const std::uint32_t level_begin = upper_.octree().level_begin[static_cast<std::size_t>(level)];
-  QueryContext q(X_LU, request, sdf_, reach);
+  QueryContext q(X_LU, request, sdf_, Reach(request));
   // The cells' grid points first, so that the field's bricks can be asked for
   // some cells ahead (two dependent loads per cell: index entry, then brick).
   thread_local std::vector<SdfSampler::GridPoint> points;
@@ -109,49 +159,11 @@ void JawOracle::Query(const Eigen::Isometry3d& X_LU, const OracleRequest& reques
     const std::uint32_t node = found.cells_b[i];
     if (voxel_sample_begin_[node_leaf_begin_[node]] == voxel_sample_begin_[node_leaf_end_[node]])
       continue;
-    // At voxel level a point's value is the field at its voxel's centre,
-    // within 0.866 s of the point: the cell's reach grows by that much.
-    const double r = static_cast<double>(cell_radius_[node - level_begin]) +
-                     (request.level == AccuracyLevel::kVoxel ? q.interp_error : 0.0);
-    const Eigen::Vector3d c_U = cell_center_U_[node - level_begin].cast<double>();
     q.cell = points[i];
-    q.cell_centre_U = cell_center_U_[node - level_begin];
-    float d = 0.0f;
-    q.cell_known = q.sampler.Value(q.cell.base, q.cell.local, &d);
-    q.cell_d = static_cast<double>(d);
-    q.cell_r = r;
-    if (q.cell_known) {
-      if (request.cull && q.Irrelevant(q.cell_d, r)) continue;
-      q.unknown_side = q.cell_d > r + q.interp_error - q.band_mm ? UnknownSide::kExterior
-                                                                 : UnknownSide::kMaybeInterior;
-    } else if (r < q.band_mm) {
-      const Eigen::Vector3d c_L = X_LU * c_U;
-      q.unknown_side = LowerInterior(c_L) ? UnknownSide::kMaybeInterior : UnknownSide::kExterior;
-      // Outside, the lower's voxel cubes (which hold its surface) are at least
-      // LowerBound away from c, so a sample within r has D >= that - r and its
-      // interpolated value (within interp_error of D) is above the outer band.
-      if (request.cull && q.unknown_side == UnknownSide::kExterior &&
-          lower_.distance_bound().LowerBound(c_L) - r - q.interp_error >
-              q.outer + QueryContext::kSlackMm) {
-        continue;
-      }
-    } else {
-      q.unknown_side = UnknownSide::kMaybeInterior;
-    }
-    EvaluateCell(node, &q, result);
+    if (PrepareCell(node, level_begin, &q)) EvaluateCell(node, &q, result);
   }
   if (found.cells_b.empty()) CountNestedPieces(X_LU, result);
-
-  const double lr = result->left_share + result->right_share;
-  const double ap = result->anterior_share + result->posterior_share;
-  if (lr > 0) {
-    result->left_share /= lr;
-    result->right_share /= lr;
-  }
-  if (ap > 0) {
-    result->anterior_share /= ap;
-    result->posterior_share /= ap;
-  }
+  NormalizeShares(result);
 }
 
 }  // namespace occlude::collision

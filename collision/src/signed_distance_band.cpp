@@ -9,11 +9,11 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "occlude/collision/closest_point.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
+#include "parallel.h"
 #include "signed_distance_detail.h"
 
 namespace occlude::collision {
@@ -75,7 +75,8 @@ NarrowBandSdf NarrowBandSdf::Build(std::shared_ptr<const io::TriangleMesh> mesh,
   sdf.band_mm_ = options.dilation_voxels * grid.voxel_size_mm;
   sdf.CopyGrid(grid);
   sdf.PackTriangles();
-  sdf.FillBlocks(sdf.BandVoxels(grid, options.dilation_voxels));
+  sdf.FillBlocks(sdf.BandVoxels(grid, options.dilation_voxels),
+                 detail::ResolveThreads(options.threads));
   sdf.build_seconds_ = Seconds(start);
   return sdf;
 }
@@ -133,28 +134,38 @@ detail::BrickSet NarrowBandSdf::BandVoxels(const VoxelGrid& grid, int dilation) 
   return band;
 }
 
-void NarrowBandSdf::FillBlocks(const detail::BrickSet& band) {
+void NarrowBandSdf::FillBlocks(const detail::BrickSet& band, int threads) {
   // Corner (i, j, k) of a voxel is stored under the key of voxel (i, j, k):
   // the corner set is the band grown by one voxel upward along each axis.
   detail::BrickSet corners = band;
   for (int axis = 0; axis < 3; ++axis) corners.Dilate(axis, true, false);
   corners.Finish();
-  const std::vector<float> value = CornerValues(corners);
+  const std::vector<float> value = CornerValues(corners, threads);
   corner_bricks_.assign(band.bricks().size(), CornerBrick{});
-  for (std::size_t i = 0; i < band.bricks().size(); ++i) {
-    const Eigen::Vector3i base = 4 * MortonDecode(band.bricks()[i].key);
-    corner_bricks_[i].mask = band.bricks()[i].mask;
-    float* out = corner_bricks_[i].value;
-    for (int z = 0; z < 5; ++z) {
-      for (int y = 0; y < 5; ++y) {
-        for (int x = 0; x < 5; ++x) {
-          const std::uint32_t r = corners.Rank(MortonEncode(base + Eigen::Vector3i(x, y, z)));
-          out[x + 5 * y + 25 * z] = r == detail::KeyIndexHash::kNotFound ? 0.0f : value[r];
-        }
+  constexpr std::size_t kBricksPerBlock = 256;
+  const std::size_t bricks = band.bricks().size();
+  detail::ParallelFor((bricks + kBricksPerBlock - 1) / kBricksPerBlock, threads,
+                      [&](std::size_t block, int) {
+                        const std::size_t end = std::min(bricks, (block + 1) * kBricksPerBlock);
+                        for (std::size_t i = block * kBricksPerBlock; i < end; ++i)
+                          FillCornerBrick(band.bricks()[i], corners, value, &corner_bricks_[i]);
+                      });
+  band_ = band;
+}
+
+void NarrowBandSdf::FillCornerBrick(const detail::BrickSet::Brick& brick,
+                                    const detail::BrickSet& corners,
+                                    const std::vector<float>& value, CornerBrick* out) {
+  const Eigen::Vector3i base = 4 * MortonDecode(brick.key);
+  out->mask = brick.mask;
+  for (int z = 0; z < 5; ++z) {
+    for (int y = 0; y < 5; ++y) {
+      for (int x = 0; x < 5; ++x) {
+        const std::uint32_t r = corners.Rank(MortonEncode(base + Eigen::Vector3i(x, y, z)));
+        out->value[x + 5 * y + 25 * z] = r == detail::KeyIndexHash::kNotFound ? 0.0f : value[r];
       }
     }
   }
-  band_ = band;
 }
 
 void NarrowBandSdf::TestTriangle(std::uint32_t t, const Eigen::Vector3d& p, Nearest* best,
@@ -335,82 +346,99 @@ bool NarrowBandSdf::Interpolate(const Eigen::Vector3d& p_F, double* distance,
   return true;
 }
 
-VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value) const {
-  return BandCellsWithin(depth, value, 1);
+VoxelGrid NarrowBandSdf::BandVoxelsWithin(float depth, float value, int threads) const {
+  return BandCellsWithin(depth, value, 1, threads);
 }
 
-VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split) const {
+VoxelGrid NarrowBandSdf::BandCellsWithin(float depth, float value, int split, int threads) const {
   if (split < 1 || split > 8) throw std::invalid_argument("BandCellsWithin: split must be in 1..8");
+  threads = detail::ResolveThreads(threads);
   VoxelGrid out;
   out.voxel_size_mm = s_ / split;
   out.origin_F = origin_ - static_cast<double>(shift_) * s_ * Eigen::Vector3d::Ones();
   out.dims = split * (dims_ + Eigen::Vector3i::Constant(2 * shift_));
+  // Blocks of band bricks, their keys concatenated in block order: the same list for any
+  // thread count (in Morton order for split 1 and 2, sorted below otherwise).
+  constexpr std::size_t kBricksPerBlock = 256;
+  const std::size_t bricks = band_.bricks().size();
+  std::vector<std::vector<std::uint64_t>> keys((bricks + kBricksPerBlock - 1) / kBricksPerBlock);
+  detail::ParallelFor(keys.size(), threads, [&](std::size_t block, int) {
+    const std::size_t end = std::min(bricks, (block + 1) * kBricksPerBlock);
+    for (std::size_t i = block * kBricksPerBlock; i < end; ++i) {
+      for (std::uint64_t m = band_.bricks()[i].mask; m != 0; m &= m - 1)
+        BandVoxelCells(i, __builtin_ctzll(m), depth, value, split, &keys[block]);
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& k : keys) total += k.size();
+  out.surface_keys.reserve(total);
+  for (auto& k : keys) {
+    out.surface_keys.insert(out.surface_keys.end(), k.begin(), k.end());
+    std::vector<std::uint64_t>().swap(k);
+  }
+  if (!std::is_sorted(out.surface_keys.begin(), out.surface_keys.end()))
+    std::sort(out.surface_keys.begin(), out.surface_keys.end());
+  return out;
+}
+
+void NarrowBandSdf::BandVoxelCells(std::size_t brick, int bit, float depth, float value, int split,
+                                   std::vector<std::uint64_t>* keys) const {
+  // The bit is the voxel's 2x2x2-interleaved position in the brick (as Locate).
+  const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1,
+                          ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
+                          ((bit >> 2) & 1) | ((bit >> 5) & 1) << 1);
+  // The voxel's index in the result's voxels (shifted).
+  const Eigen::Vector3i g = 4 * MortonDecode(band_.bricks()[brick].key) + l;
+  const float* v = corner_bricks_[brick].value + l.x() + 5 * l.y() + 25 * l.z();
+  std::array<float, 8> c;
+  for (int o = 0; o < 8; ++o) c[static_cast<std::size_t>(o)] = v[kCornerStep[o]];
+  // A trilinear value lies between its voxel's smallest and largest corner.
+  const bool in_range = *std::min_element(c.begin(), c.end()) <= value &&
+                        *std::max_element(c.begin(), c.end()) >= -depth;
+  // Surface voxels are kept whole (so that no cell found still means that
+  // no upper voxel comes near the lower surface).
+  const Eigen::Vector3i v_F = g - Eigen::Vector3i::Constant(shift_);
+  const bool surface = (split > 1 || !in_range) && (v_F.array() >= 0).all() &&
+                       surface_.Rank(MortonEncode(v_F)) != detail::KeyIndexHash::kNotFound;
+  if (!in_range && !surface) return;
+  if (surface || split == 1) {
+    for (int o = 0; o < split * split * split; ++o) {
+      keys->push_back(MortonEncode(
+          split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
+    }
+    return;
+  }
+  // The field on the cells' corners, then the cells whose corner range meets [-depth, value].
   const int n = split + 1;
-  std::vector<float> at(
-      static_cast<std::size_t>(n * n * n));  // a voxel's field on its cells' corners
-  for (std::size_t i = 0; i < band_.bricks().size(); ++i) {
-    const detail::BrickSet::Brick& brick = band_.bricks()[i];
-    const Eigen::Vector3i base = 4 * MortonDecode(brick.key);
-    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
-      const int bit = __builtin_ctzll(m);
-      // The bit is the voxel's 2x2x2-interleaved position in the brick (as Locate).
-      const Eigen::Vector3i l((bit & 1) | ((bit >> 3) & 1) << 1,
-                              ((bit >> 1) & 1) | ((bit >> 4) & 1) << 1,
-                              ((bit >> 2) & 1) | ((bit >> 5) & 1) << 1);
-      const Eigen::Vector3i g = base + l;  // the voxel's index in `out`'s voxels (shifted)
-      const float* v = corner_bricks_[i].value + l.x() + 5 * l.y() + 25 * l.z();
-      float c[8];
-      for (int o = 0; o < 8; ++o) c[o] = v[kCornerStep[o]];
-      // A trilinear value lies between its voxel's smallest and largest corner.
-      const bool in_range =
-          *std::min_element(c, c + 8) <= value && *std::max_element(c, c + 8) >= -depth;
-      // Surface voxels are kept whole (so that no cell found still means that
-      // no upper voxel comes near the lower surface).
-      const Eigen::Vector3i v_F = g - Eigen::Vector3i::Constant(shift_);
-      const bool surface = (split > 1 || !in_range) && (v_F.array() >= 0).all() &&
-                           surface_.Rank(MortonEncode(v_F)) != detail::KeyIndexHash::kNotFound;
-      if (!in_range && !surface) continue;
-      if (surface || split == 1) {
-        for (int o = 0; o < split * split * split; ++o) {
-          out.surface_keys.push_back(MortonEncode(
-              split * g + Eigen::Vector3i(o % split, o / split % split, o / (split * split))));
-        }
-        continue;
-      }
-      // The field on the cells' corners, then the cells whose corner range meets [-depth, value].
-      for (int z = 0; z < n; ++z) {
-        for (int y = 0; y < n; ++y) {
-          for (int x = 0; x < n; ++x) {
-            const float fx = static_cast<float>(x) / static_cast<float>(split);
-            const float fy = static_cast<float>(y) / static_cast<float>(split);
-            const float fz = static_cast<float>(z) / static_cast<float>(split);
-            const float a0 = c[0] + fx * (c[1] - c[0]), a1 = c[2] + fx * (c[3] - c[2]);
-            const float a2 = c[4] + fx * (c[5] - c[4]), a3 = c[6] + fx * (c[7] - c[6]);
-            const float b0 = a0 + fy * (a1 - a0), b1 = a2 + fy * (a3 - a2);
-            at[static_cast<std::size_t>(x + n * (y + n * z))] = b0 + fz * (b1 - b0);
-          }
-        }
-      }
-      for (int z = 0; z < split; ++z) {
-        for (int y = 0; y < split; ++y) {
-          for (int x = 0; x < split; ++x) {
-            float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
-            for (int o = 0; o < 8; ++o) {
-              const float f = at[static_cast<std::size_t>(
-                  (x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
-              lowest = std::min(lowest, f);
-              highest = std::max(highest, f);
-            }
-            if (lowest <= value && highest >= -depth) {
-              out.surface_keys.push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
-            }
-          }
-        }
+  std::array<float, 9 * 9 * 9> at;
+  for (int z = 0; z < n; ++z) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        const float fx = static_cast<float>(x) / static_cast<float>(split);
+        const float fy = static_cast<float>(y) / static_cast<float>(split);
+        const float fz = static_cast<float>(z) / static_cast<float>(split);
+        const float a0 = c[0] + fx * (c[1] - c[0]), a1 = c[2] + fx * (c[3] - c[2]);
+        const float a2 = c[4] + fx * (c[5] - c[4]), a3 = c[6] + fx * (c[7] - c[6]);
+        const float b0 = a0 + fy * (a1 - a0), b1 = a2 + fy * (a3 - a2);
+        at[static_cast<std::size_t>(x + n * (y + n * z))] = b0 + fz * (b1 - b0);
       }
     }
   }
-  std::sort(out.surface_keys.begin(), out.surface_keys.end());
-  return out;
+  for (int z = 0; z < split; ++z) {
+    for (int y = 0; y < split; ++y) {
+      for (int x = 0; x < split; ++x) {
+        float lowest = std::numeric_limits<float>::infinity(), highest = -lowest;
+        for (int o = 0; o < 8; ++o) {
+          const float f = at[static_cast<std::size_t>(
+              (x + (o & 1)) + n * ((y + (o >> 1 & 1)) + n * (z + (o >> 2))))];
+          lowest = std::min(lowest, f);
+          highest = std::max(highest, f);
+        }
+        if (lowest <= value && highest >= -depth)
+          keys->push_back(MortonEncode(split * g + Eigen::Vector3i(x, y, z)));
+      }
+    }
+  }
 }
 
 bool NarrowBandSdf::CellValue(const Eigen::Vector3d& p_F, double* distance) const {

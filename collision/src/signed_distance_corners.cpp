@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #if defined(__SSE2__)
 #include <xmmintrin.h>
@@ -22,6 +21,7 @@
 #include "occlude/collision/closest_point.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
+#include "parallel.h"
 #include "signed_distance_detail.h"
 
 namespace occlude::collision {
@@ -78,79 +78,108 @@ void NarrowBandSdf::ScanCandidates(const CornerScratch& sc, std::size_t count,
 #endif
 }
 
-std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners) const {
+std::vector<float> NarrowBandSdf::CornerValues(const detail::BrickSet& corners, int threads) const {
   std::vector<float> value(corners.num_voxels());
-  const auto& bricks = corners.bricks();
-  auto fill = [&](std::size_t first, std::size_t last) {
-    CornerScratch scratch;
-    scratch.seen.assign(mesh_->num_triangles(), 0);
-    for (std::size_t bi = first; bi < last; ++bi) BrickCornerValues(corners, bi, &scratch, &value);
-  };
-  // Two halves on two threads (each value is the exact distance; only the
-  // choice between equidistant triangles could depend on the split, which is
-  // fixed, so builds stay deterministic).
-  const std::size_t half = bricks.size() / 2;
-  if (bricks.size() < 64) {
-    fill(0, bricks.size());
-  } else {
-    std::thread other(fill, half, bricks.size());
-    fill(0, half);
-    other.join();
-  }
+  // Blocks of bricks, each starting without a hint: a corner's value is its exact distance
+  // whatever the order, and the hint (the previous corner's triangle) only decides between
+  // equidistant triangles, so fixed blocks keep the values independent of the thread count.
+  constexpr std::size_t kBricksPerBlock = 64;
+  const std::size_t bricks = corners.bricks().size();
+  std::vector<CornerScratch> scratch(static_cast<std::size_t>(std::max(1, threads)));
+  detail::ParallelFor((bricks + kBricksPerBlock - 1) / kBricksPerBlock, threads,
+                      [&](std::size_t block, int worker) {
+                        CornerScratch& sc = scratch[static_cast<std::size_t>(worker)];
+                        if (sc.seen.empty()) sc.seen.assign(mesh_->num_triangles(), 0);
+                        sc.hint = kNoHint;
+                        const std::size_t end = std::min(bricks, (block + 1) * kBricksPerBlock);
+                        for (std::size_t bi = block * kBricksPerBlock; bi < end; ++bi)
+                          BrickCornerValues(corners, bi, &sc, &value);
+                      });
   return value;
 }
 
-void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size_t bi,
-                                      CornerScratch* sc, std::vector<float>* value) const {
-  // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
-  // triangle lies within sqrt(3) (d + 2) s: the full search always succeeds.
-  const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
-  const auto& brick = corners.bricks()[bi];
-  const Eigen::Vector3i base = 4 * MortonDecode(brick.key) - Eigen::Vector3i::Constant(shift_);
-  auto corner_at = [&](int bit) { return Eigen::Vector3i(base + detail::BrickLocal(bit)); };
-  // The corners' index box, and the corner nearest its centre (x0).
-  Eigen::Vector3i lo = Eigen::Vector3i::Constant(4), hi = Eigen::Vector3i::Constant(-1);
-  for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
+namespace {
+
+// The index box [lo, hi] of a corner brick's corners (mask bits), the corner nearest the box's
+// centre (*centre, a bit) and the largest squared distance of a corner from it (voxel units).
+void CornerBox(std::uint64_t mask, Eigen::Vector3i* lo, Eigen::Vector3i* hi, int* centre,
+               double* spread2) {
+  *lo = Eigen::Vector3i::Constant(4);
+  *hi = Eigen::Vector3i::Constant(-1);
+  for (std::uint64_t m = mask; m != 0; m &= m - 1) {
     const Eigen::Vector3i l = detail::BrickLocal(__builtin_ctzll(m));
-    lo = lo.cwiseMin(l);
-    hi = hi.cwiseMax(l);
+    *lo = lo->cwiseMin(l);
+    *hi = hi->cwiseMax(l);
   }
-  const Eigen::Vector3d mid = 0.5 * (lo + hi).cast<double>();
-  int x0 = -1;
-  double best_mid = std::numeric_limits<double>::infinity(), spread2 = 0.0;
-  for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
+  const Eigen::Vector3d mid = 0.5 * (*lo + *hi).cast<double>();
+  *centre = -1;
+  double best_mid = std::numeric_limits<double>::infinity();
+  for (std::uint64_t m = mask; m != 0; m &= m - 1) {
     const int bit = __builtin_ctzll(m);
     const double d2 = (detail::BrickLocal(bit).cast<double>() - mid).squaredNorm();
     if (d2 < best_mid) {
       best_mid = d2;
-      x0 = bit;
+      *centre = bit;
     }
   }
-  for (std::uint64_t m = brick.mask; m != 0; m &= m - 1) {
-    spread2 = std::max(spread2, (detail::BrickLocal(__builtin_ctzll(m)) - detail::BrickLocal(x0))
-                                    .cast<double>()
-                                    .squaredNorm());
+  *spread2 = 0.0;
+  for (std::uint64_t m = mask; m != 0; m &= m - 1) {
+    *spread2 =
+        std::max(*spread2, (detail::BrickLocal(__builtin_ctzll(m)) - detail::BrickLocal(*centre))
+                               .cast<double>()
+                               .squaredNorm());
   }
-  const Eigen::Vector3d p0 = origin_ + s_ * corner_at(x0).cast<double>();
-  Nearest n0;
-  if (!FindNearest(p0, reach * reach, sc->hint, &n0)) {  // unreachable for a consistent grid
-    std::uint32_t slot = brick.first;
-    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1, ++slot)
-      (*value)[slot] = static_cast<float>(reach);
-    return;
-  }
-  const double R = std::sqrt(n0.squared_distance) + s_ * std::sqrt(spread2) * (1.0 + 1e-9) + 1e-9;
+}
 
-  // Gather the triangles of surface voxels whose cubes are within R of the
-  // corners' box (in voxel units: corners at integer coordinates).
+// Squared gap between voxel cube [v, v + 1] and the box [lo, hi] (voxel units).
+double BoxGap2(const Eigen::Vector3i& v, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  double g2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double gap = std::max({0.0, v[a] - hi[a], lo[a] - (v[a] + 1.0)});
+    g2 += gap * gap;
+  }
+  return g2;
+}
+
+}  // namespace
+
+void NarrowBandSdf::ClearCandidates(CornerScratch* sc) {
   sc->triangle.clear();
   sc->cx.clear();
   sc->cy.clear();
   sc->cz.clear();
   sc->r.clear();
   ++sc->epoch;
+}
+
+void NarrowBandSdf::PadCandidates(CornerScratch* sc) {
+  while (sc->triangle.size() % 4 != 0) {  // padding, never within reach
+    sc->triangle.push_back(0);
+    sc->cx.push_back(kFarMm);
+    sc->cy.push_back(kFarMm);
+    sc->cz.push_back(kFarMm);
+    sc->r.push_back(0.0f);
+  }
+}
+
+void NarrowBandSdf::AddVoxelCandidates(std::size_t voxel, CornerScratch* sc) const {
+  for (std::uint32_t i = tri_offsets_[voxel]; i < tri_offsets_[voxel + 1]; ++i) {
+    const std::uint32_t t = tri_indices_[i];
+    if (sc->seen[t] == sc->epoch) continue;
+    sc->seen[t] = sc->epoch;
+    const PackedTriangle& pt = packed_[t];
+    sc->triangle.push_back(t);
+    sc->cx.push_back(static_cast<float>(pt.center.x()));
+    sc->cy.push_back(static_cast<float>(pt.center.y()));
+    sc->cz.push_back(static_cast<float>(pt.center.z()));
+    sc->r.push_back(static_cast<float>(pt.radius) * (1.0f + 1e-5f) + 1e-4f);  // float rounding
+  }
+}
+
+void NarrowBandSdf::GatherCandidates(const Eigen::Vector3d& box_lo, const Eigen::Vector3d& box_hi,
+                                     double R, CornerScratch* sc) const {
+  ClearCandidates(sc);
   const double Rv = R * inv_s_, Rv2 = Rv * Rv;
-  const Eigen::Vector3d box_lo = (base + lo).cast<double>(), box_hi = (base + hi).cast<double>();
   Eigen::Vector3i vlo, vhi;  // surface voxel index range that can be within R
   for (int a = 0; a < 3; ++a) {
     vlo[a] = std::max(0, static_cast<int>(std::floor(box_lo[a] - Rv)) - 1);
@@ -171,48 +200,48 @@ void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size
         }
         for (std::uint64_t m = mask; m != 0; m &= m - 1) {
           const int bit = __builtin_ctzll(m);
-          const Eigen::Vector3i v = 4 * bb + detail::BrickLocal(bit);
-          // Box-to-box gap between voxel [v, v + 1] and the corners' box.
-          double g2 = 0.0;
-          for (int a = 0; a < 3; ++a) {
-            const double gap = std::max({0.0, v[a] - box_hi[a], box_lo[a] - (v[a] + 1.0)});
-            g2 += gap * gap;
-          }
-          if (g2 > Rv2) continue;
-          const std::size_t idx =
-              b->first + detail::BrickSet::PopCount(b->mask & ((std::uint64_t{1} << bit) - 1));
-          for (std::uint32_t i = tri_offsets_[idx]; i < tri_offsets_[idx + 1]; ++i) {
-            const std::uint32_t t = tri_indices_[i];
-            if (sc->seen[t] == sc->epoch) continue;
-            sc->seen[t] = sc->epoch;
-            const PackedTriangle& pt = packed_[t];
-            sc->triangle.push_back(t);
-            sc->cx.push_back(static_cast<float>(pt.center.x()));
-            sc->cy.push_back(static_cast<float>(pt.center.y()));
-            sc->cz.push_back(static_cast<float>(pt.center.z()));
-            sc->r.push_back(static_cast<float>(pt.radius) * (1.0f + 1e-5f) +
-                            1e-4f);  // float rounding, mm
-          }
+          if (BoxGap2(4 * bb + detail::BrickLocal(bit), box_lo, box_hi) > Rv2) continue;
+          AddVoxelCandidates(
+              b->first + detail::BrickSet::PopCount(b->mask & ((std::uint64_t{1} << bit) - 1)), sc);
         }
       }
     }
   }
+}
 
+void NarrowBandSdf::BrickCornerValues(const detail::BrickSet& corners, std::size_t bi,
+                                      CornerScratch* sc, std::vector<float>* value) const {
+  // A band corner is within d + 1 voxels (per axis) of a surface voxel, so a
+  // triangle lies within sqrt(3) (d + 2) s: the full search always succeeds.
+  const double reach = std::sqrt(3.0) * (shift_ + 1) * s_;
+  const auto& brick = corners.bricks()[bi];
+  const Eigen::Vector3i base = 4 * MortonDecode(brick.key) - Eigen::Vector3i::Constant(shift_);
+  auto corner_p = [&](int bit) {
+    return Eigen::Vector3d(origin_ + s_ * (base + detail::BrickLocal(bit)).cast<double>());
+  };
+  Eigen::Vector3i lo, hi;
+  int x0 = -1;
+  double spread2 = 0.0;
+  CornerBox(brick.mask, &lo, &hi, &x0, &spread2);
+  Nearest n0;
+  if (!FindNearest(corner_p(x0), reach * reach, sc->hint, &n0)) {  // unreachable
+    std::uint32_t slot = brick.first;
+    for (std::uint64_t m = brick.mask; m != 0; m &= m - 1, ++slot)
+      (*value)[slot] = static_cast<float>(reach);
+    return;
+  }
+  // The triangles of surface voxels whose cubes are within R of the corners' box.
+  const double R = std::sqrt(n0.squared_distance) + s_ * std::sqrt(spread2) * (1.0 + 1e-9) + 1e-9;
+  GatherCandidates((base + lo).cast<double>(), (base + hi).cast<double>(), R, sc);
+  const std::size_t count = sc->triangle.size();
+  PadCandidates(sc);
   // Every corner against the candidates, seeded with the previous corner's
   // triangle (x0's for the first).
   std::uint32_t hint = n0.triangle;
   std::uint32_t slot = brick.first;
-  const std::size_t count = sc->triangle.size();
-  while (sc->triangle.size() % 4 != 0) {  // padding, never within reach
-    sc->triangle.push_back(0);
-    sc->cx.push_back(kFarMm);
-    sc->cy.push_back(kFarMm);
-    sc->cz.push_back(kFarMm);
-    sc->r.push_back(0.0f);
-  }
   for (std::uint64_t m = brick.mask; m != 0; m &= m - 1, ++slot) {
     const int bit = __builtin_ctzll(m);
-    const Eigen::Vector3d p = origin_ + s_ * corner_at(bit).cast<double>();
+    const Eigen::Vector3d p = corner_p(bit);
     Nearest best;
     bool found = false;
     best.squared_distance = std::numeric_limits<double>::infinity();

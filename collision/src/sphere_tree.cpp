@@ -170,7 +170,8 @@ SphereTree SphereTree::Build(std::shared_ptr<const io::TriangleMesh> mesh_F,
 
   if (options.build_distance_bound && !oct.empty()) {
     start = std::chrono::steady_clock::now();
-    tree.bound_ = DistanceBound::Build(tree.grid_);
+    tree.bound_ = DistanceBound::Build(tree.grid_, DistanceBound::kMaxVoxels,
+                                       DistanceBound::DefaultLevels(), options.threads);
     tree.stats_.seconds_bound = detail::SecondsSince(start);
   }
 

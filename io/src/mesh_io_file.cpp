@@ -133,17 +133,21 @@ std::string ReadWholeFile(const fs::path& file) {
   return bytes;
 }
 
-void WriteFileAtomically(const fs::path& file, const std::string& bytes) {
-  if (file.filename().empty()) Fail(file, "cannot write: the path names no file");
-  const fs::path folder = FolderOf(file);
+}  // namespace occlude::io::detail
+
+namespace occlude::io {
+
+void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+  if (file.filename().empty()) detail::Fail(file, "cannot write: the path names no file");
+  const std::filesystem::path folder = detail::FolderOf(file);
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) {
-    Fail(file,
-         "cannot write: the folder '" + folder.string() + "' does not exist; create it first");
+  if (!std::filesystem::is_directory(folder, ec)) {
+    detail::Fail(
+        file, "cannot write: the folder '" + folder.string() + "' does not exist; create it first");
   }
-  TempFile temp(file);
+  detail::TempFile temp(file);
   temp.Write(bytes);
   temp.Commit();
 }
 
-}  // namespace occlude::io::detail
+}  // namespace occlude::io

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "occlude/io/atomic_file.h"
 #include "occlude/io/mesh_io.h"
 #include "occlude/io/triangle_mesh.h"
 
@@ -37,10 +38,8 @@ std::string Line(const std::filesystem::path& file, const std::string& what);
 /// file of sane size. Throws MeshError otherwise.
 std::string ReadWholeFile(const std::filesystem::path& file);
 
-/// Replaces `file` by `bytes` atomically (temporary file in the same folder,
-/// flushed, then renamed). Throws MeshError naming `file`; never leaves the
-/// temporary file behind when it throws.
-void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes);
+/// WriteFileAtomically (atomic_file.h), as the writers here call it.
+using io::WriteFileAtomically;
 
 /// STL, binary or ASCII (decided by content); coordinates checked finite.
 RawMesh ReadStl(const std::filesystem::path& file, std::string_view bytes);

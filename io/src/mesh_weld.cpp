@@ -6,6 +6,7 @@
 
 #include "mesh_io_internal.h"
 #include "mesh_io_text.h"
+#include "occlude/io/content_hash.h"
 
 namespace occlude::io::detail {
 namespace {
@@ -20,15 +21,6 @@ std::uint64_t Bits(double value) {
   std::uint64_t bits;
   std::memcpy(&bits, &value, sizeof bits);
   return bits;
-}
-
-// splitmix64 finaliser: spreads nearby bit patterns over the whole word.
-std::uint64_t Mix(std::uint64_t x) {
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ULL;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
 }
 
 // -0.0 becomes +0.0, so that positions equal by value are equal in bits.
@@ -66,7 +58,7 @@ class Welder {
 
  private:
   static std::uint64_t Hash(const Eigen::Vector3d& p) {
-    return Mix(Bits(p.x()) ^ Mix(Bits(p.y()) ^ Mix(Bits(p.z()))));
+    return Mix64(Bits(p.x()) ^ Mix64(Bits(p.y()) ^ Mix64(Bits(p.z()))));
   }
 
   void Grow() {

@@ -193,12 +193,13 @@ TEST(RegionOfInterest, SameAnswersAsTheWholeJawsNearTheBite) {
     SCOPED_TRACE(open ? "open lower" : "closed lower");
     const Scene& s = Synthetic(open);
 #ifdef OCCLUDE_SANITIZED
-    constexpr int kPoses = 8;  // the sanitizer lane looks for memory errors (the release lane: 16)
+    constexpr int kComparedPoses =
+        8;  // the sanitizer lane looks for memory errors (the release lane: 16)
 #else
-    constexpr int kPoses = 16;
+    constexpr int kComparedPoses = 16;
 #endif
-    const int touching = CompareOracles(s, Request(s, 0.4, 1.5, 0), options, kPoses, 11);
-    EXPECT_GE(touching, kPoses / 2) << "the poses should exercise contacts";
+    const int touching = CompareOracles(s, Request(s, 0.4, 1.5, 0), options, kComparedPoses, 11);
+    EXPECT_GE(touching, kComparedPoses / 2) << "the poses should exercise contacts";
   }
 }
 

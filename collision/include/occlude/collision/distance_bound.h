@@ -67,10 +67,14 @@ class DistanceBound {
   DistanceBound() = default;
   /// Builds the bound of `grid`'s surface voxels at the octree levels
   /// `levels` (increasing, 0 = voxels). Cost: about (2 max_voxels + 1) per cell
-  /// of each level's band, three times. Throws std::invalid_argument when
-  /// max_voxels is outside [1, kMaxVoxels] or the levels are not increasing in [0, 20].
+  /// of each level's band, three times. `threads` workers (0 = every core); the
+  /// bound is the same for any count. Throws std::invalid_argument when
+  /// max_voxels is outside [1, kMaxVoxels], the levels are not increasing in
+  /// [0, 20] or threads is negative.
   static DistanceBound Build(const VoxelGrid& grid, int max_voxels = kMaxVoxels,
-                             const std::vector<int>& levels = {0, 1, 3});
+                             const std::vector<int>& levels = DefaultLevels(), int threads = 1);
+  /// The levels of a sphere tree's bound: voxels, 2 and 8 voxels.
+  static std::vector<int> DefaultLevels() { return {0, 1, 3}; }
 
   bool empty() const { return levels_.empty() || levels_[0].bricks.empty(); }
   /// Largest distance the bound can certify, mm (the coarsest level's cap).
@@ -131,6 +135,7 @@ class DistanceBound {
   std::size_t MemoryBytes() const;
 
  private:
+  friend struct detail::OracleCodec;
   template <bool kEstimate>
   Probe Probe3(const Eigen::Vector3d& q0, double radius) const;
   /// The first level a probe of this radius reads: a level whose cap is at
@@ -177,7 +182,7 @@ class DistanceBound {
     /// cell's centre; false when q is out of the key range or NaN.
     bool CellQ(const Eigen::Vector3d& q, std::uint8_t* value, Eigen::Vector3d* offset) const;
   };
-  static Level BuildLevel(const VoxelGrid& grid, int max_voxels, int level);
+  static Level BuildLevel(const VoxelGrid& grid, int max_voxels, int level, int threads);
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::vector<Level> levels_;  ///< finest first

@@ -6,7 +6,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "occlude/io/content_hash.h"
+
 namespace occlude::collision::detail {
+
+/// Writes and reads the built structures (oracle_file.h); a friend of the classes it saves.
+struct OracleCodec;
 
 /// Open-addressing hash from a 64-bit key (never ~0) to a 32-bit value:
 /// power-of-two capacity, load <= 3/4, linear probing, splitmix64 finaliser.
@@ -31,16 +36,10 @@ class KeyIndexHash {
   std::size_t size() const { return size_; }
   std::size_t MemoryBytes() const { return slots_.capacity() * sizeof(Slot); }
 
-  static std::uint64_t Mix(std::uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31;
-    return x;
-  }
+  static std::uint64_t Mix(std::uint64_t x) { return io::Mix64(x); }
 
  private:
+  friend struct OracleCodec;
   struct Slot {
     std::uint64_t key = kEmpty;
     std::uint32_t value = 0;

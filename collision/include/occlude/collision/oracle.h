@@ -25,6 +25,7 @@
 #include "occlude/collision/collide.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/collision/sphere_tree.h"
+#include "occlude/io/content_hash.h"
 
 namespace occlude::collision {
 
@@ -65,6 +66,10 @@ struct OracleOptions {
   double field_bound_mm = 0.1;
   double field_bound_depth_mm = 0.3;
   std::optional<ArchFrame> arch;  ///< default: EstimateArchFrame with U as given
+  /// Threads of the build (0 = every core): the two jaws' structures and the independent
+  /// stages run concurrently, the heaviest loops in fixed blocks. The oracle is the same,
+  /// bit for bit, for any count; it only changes how long the build takes.
+  int threads = 0;
 };
 
 struct OracleRequest {
@@ -168,7 +173,15 @@ class JawOracle {
   std::size_t MemoryBytes() const;
 
  private:
-  struct QueryContext;  // per-query constants and the field sampler (oracle_query.cpp)
+  friend struct detail::OracleCodec;
+  JawOracle() = default;  ///< empty, for the codec to fill (oracle_file.h)
+  struct QueryContext;    // per-query constants and the field sampler (oracle_query.cpp)
+  /// The broad phase's request for `request`: against the field bound when it applies, else
+  /// the lower's voxels with the request's reach (oracle_query.cpp).
+  CellRequest BroadPhase(const OracleRequest& request) const;
+  /// Sets q's per-cell values for upper cell `node` (q->cell already at its centre's grid
+  /// point); false when its samples cannot count (culled).
+  bool PrepareCell(std::uint32_t node, std::uint32_t level_begin, QueryContext* q) const;
   /// Evaluates the samples (or, at voxel level, the voxel centroids) of one
   /// upper cell, described by q (oracle_evaluate.cpp).
   void EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* result) const;
@@ -186,6 +199,21 @@ class JawOracle {
   // lower or (some of its connected components) wholly inside a closed lower component. One
   // interior test per upper component tells which; the samples of those inside count as deep.
   void CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* result) const;
+
+  // Construction (oracle_build.cpp: the lower jaw's side; oracle_samples.cpp: the upper's).
+  // The two sides write disjoint members and run concurrently.
+  void BuildLowerSide(std::shared_ptr<const io::TriangleMesh> lower_L, int threads);
+  void BuildFieldBound(int threads);
+  void BuildInteriorRows();
+  void BuildUpperSide(std::shared_ptr<const io::TriangleMesh> upper_U, int threads);
+  /// The samples of the upper surface, grouped by voxel (CSR), and one per component.
+  void PlaceSamples(const io::TriangleMesh& upper_U, int threads);
+  void BuildVoxelSamples();
+  void BuildNodeLeafRanges();
+  /// Cell centres and radii, the samples' offsets and the voxels' spheres (the query's culls).
+  void BuildCellSpheres();
+  void BuildNodeSampleSpheres();
+  void BuildSamplesSphere();
 
   OracleOptions options_;
   SphereTree lower_, upper_;
@@ -232,5 +260,10 @@ class JawOracle {
   std::vector<bool> part_has_tooth_;
   double build_seconds_ = 0.0;
 };
+
+/// Adds an answer to `hash`, bit-exact: its totals, shares, deepest point, counts (samples,
+/// cells, samples evaluated; not node_tests), parts, point lists and residuals. Equal hashes
+/// over many queries mean bit-identical answers (determinism and saved-oracle checks).
+void HashOracleResult(const OracleResult& result, io::Hasher64* hash);
 
 }  // namespace occlude::collision

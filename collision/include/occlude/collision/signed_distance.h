@@ -71,6 +71,7 @@ class PseudoNormals {
   static constexpr double kZeroWeight = 1e-9;
 
  private:
+  friend struct detail::OracleCodec;
   std::vector<Eigen::Vector3f> faces_;     ///< per triangle
   std::vector<Eigen::Vector3f> edges_;     ///< 3 per triangle (edge k opposite corner k)
   std::vector<Eigen::Vector3f> vertices_;  ///< per vertex
@@ -97,6 +98,8 @@ struct NarrowBandOptions {
   /// Band = surface voxels dilated by this many voxels (cube neighbourhood,
   /// both sides of the surface); in [0, 16].
   int dilation_voxels = 2;
+  /// Threads of the build (0 = every core); the field is the same for any count.
+  int threads = 0;
 };
 
 namespace detail {
@@ -170,6 +173,7 @@ class BrickSet {
   }
 
  private:
+  friend struct OracleCodec;
   Brick& At(std::uint64_t brick_key);
   void BuildDense();
   /// The dense index's entry for brick (x, y, z), or null outside its box (dense_ built).
@@ -237,16 +241,17 @@ class NarrowBandSdf {
   /// band_key_shift() of the result (band voxels reach below index 0), same
   /// voxel size, origin shifted to match; only voxel_size_mm, origin_F, dims
   /// and surface_keys are set (enough for DistanceBound::Build).
-  VoxelGrid BandVoxelsWithin(float depth, float value) const;
+  VoxelGrid BandVoxelsWithin(float depth, float value, int threads = 1) const;
   /// The same at a finer grain: each band voxel split into split^3 cells (voxel
   /// size / split), keeping the cells where the trilinear field takes values in
   /// [-depth, value] (a trilinear function's extremes over a cell lie at its
   /// corners, whose values are interpolated from the voxel's) and every cell
   /// of the surface voxels. Cell (a, b, c) of voxel (i, j, k) is cell
   /// split * ((i, j, k) + band_key_shift()) + (a, b, c) of the result; the keys
-  /// are sorted. split = 1 gives BandVoxelsWithin's set. Throws
-  /// std::invalid_argument unless 1 <= split <= 8.
-  VoxelGrid BandCellsWithin(float depth, float value, int split) const;
+  /// are sorted. split = 1 gives BandVoxelsWithin's set. `threads` workers (0 =
+  /// every core; the same set for any count). Throws std::invalid_argument
+  /// unless 1 <= split <= 8 and threads >= 0.
+  VoxelGrid BandCellsWithin(float depth, float value, int split, int threads = 1) const;
   int band_key_shift() const { return shift_; }
   std::size_t num_band_voxels() const { return band_.num_voxels(); }
   /// Bytes held by this object (the shared mesh is not counted).
@@ -256,6 +261,7 @@ class NarrowBandSdf {
 
  private:
   friend class SdfSampler;  // fast repeated lookups (sdf_sampler.h)
+  friend struct detail::OracleCodec;
 
   /// A triangle's corners and bounding sphere, stored in spatial (Morton) order
   /// so that the triangles of neighbouring voxels are close in memory.
@@ -279,7 +285,10 @@ class NarrowBandSdf {
   /// Packs the triangles in spatial order and renumbers the grid's lists.
   void PackTriangles();
   detail::BrickSet BandVoxels(const VoxelGrid& grid, int dilation) const;
-  std::vector<float> CornerValues(const detail::BrickSet& corners) const;
+  /// BandCellsWithin's cells of voxel `bit` of band brick `brick`, appended to keys.
+  void BandVoxelCells(std::size_t brick, int bit, float depth, float value, int split,
+                      std::vector<std::uint64_t>* keys) const;
+  std::vector<float> CornerValues(const detail::BrickSet& corners, int threads) const;
   struct CornerScratch;  ///< per-thread buffers of CornerValues (signed_distance_corners.cpp)
   /// The exact signed distances at the corners of brick `bi` of `corners`
   /// (into value[rank]), from one candidate list of triangles for the brick.
@@ -287,7 +296,15 @@ class NarrowBandSdf {
                          std::vector<float>* value) const;
   void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p,
                       Nearest* best, bool* found) const;
-  void FillBlocks(const detail::BrickSet& band);
+  /// The triangles of the surface voxels whose cubes lie within R (mm) of the box [box_lo,
+  /// box_hi] (voxel coordinates), each once, as the scratch's candidates (in voxel order).
+  void GatherCandidates(const Eigen::Vector3d& box_lo, const Eigen::Vector3d& box_hi, double R,
+                        CornerScratch* scratch) const;
+  void AddVoxelCandidates(std::size_t voxel, CornerScratch* scratch) const;
+  static void ClearCandidates(CornerScratch* scratch);
+  /// Pads the candidates to a multiple of four with ones never within reach (ScanCandidates).
+  static void PadCandidates(CornerScratch* scratch);
+  void FillBlocks(const detail::BrickSet& band, int threads);
   /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
   /// index or kNoHint) seeds the search. False when none is within.
   bool FindNearest(const Eigen::Vector3d& p, double bound2, std::uint32_t hint,
@@ -327,6 +344,9 @@ class NarrowBandSdf {
     std::uint64_t mask = 0;  ///< band voxels of the brick (BrickSet mask)
     float value[125];
   };
+  /// One corner brick of `brick` (a band brick) from the corner values (value[rank in corners]).
+  static void FillCornerBrick(const detail::BrickSet::Brick& brick, const detail::BrickSet& corners,
+                              const std::vector<float>& value, CornerBrick* out);
   detail::BrickSet band_;  ///< shifted keys; brick i <-> corner_bricks_[i]
   std::vector<CornerBrick> corner_bricks_;
   /// The corner brick at brick coordinates (bx, by, bz) (of shifted voxel

@@ -32,6 +32,9 @@ struct SphereTreeOptions {
   /// Build the DistanceBound of the surface voxels (lets queries prune a node
   /// of the other tree that is far from this whole tree in O(1)).
   bool build_distance_bound = true;
+  /// Threads of the build (0 = every core); the tree is the same for any count. 1 by default:
+  /// the paper's figures time single-threaded builds.
+  int threads = 1;
 };
 
 /// Per-level figures of the paper (Figs. 7-9).
@@ -123,6 +126,7 @@ class SphereTree {
                       double* radius) const;
 
  private:
+  friend struct detail::OracleCodec;
   std::shared_ptr<const io::TriangleMesh> mesh_;
   VoxelGrid grid_;
   Octree octree_;

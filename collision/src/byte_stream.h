@@ -1,0 +1,107 @@
+// Private to occlude::collision: the byte writer and the bounds-checked byte reader that the
+// saved-oracle codec (oracle_codec.cpp) writes and reads structures with. Scalars and arrays of
+// plain values travel as their bytes (little-endian machines only, as content_hash.h); an
+// array is its u64 element count, then its elements.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "occlude/collision/oracle_file.h"
+
+namespace occlude::collision::detail {
+
+/// Types whose bytes are their value: trivially copyable ones and fixed-size Eigen matrices of
+/// scalars (whose bytes are the coefficients, without padding).
+template <typename T>
+struct IsBytes : std::is_trivially_copyable<T> {};
+template <typename S, int R, int C, int O, int MR, int MC>
+struct IsBytes<Eigen::Matrix<S, R, C, O, MR, MC>>
+    : std::bool_constant<std::is_arithmetic_v<S> && R != Eigen::Dynamic && C != Eigen::Dynamic &&
+                         sizeof(Eigen::Matrix<S, R, C, O, MR, MC>) == sizeof(S) * R * C> {};
+
+/// Appends to a string it does not own (so that a whole file is written into one buffer).
+class ByteWriter {
+ public:
+  explicit ByteWriter(std::string* bytes) : bytes_(*bytes) {}
+  template <typename T>
+  void Value(const T& value) {
+    static_assert(IsBytes<T>::value, "Value writes plain values");
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  template <typename T>
+  void Array(const std::vector<T>& values) {
+    static_assert(IsBytes<T>::value, "Array writes arrays of plain values");
+    Value(static_cast<std::uint64_t>(values.size()));
+    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
+  /// One byte (0 or 1) per element.
+  void Bools(const std::vector<bool>& values) {
+    Array(std::vector<std::uint8_t>(values.begin(), values.end()));
+  }
+
+ private:
+  std::string& bytes_;
+};
+
+/// Reads what a ByteWriter wrote; any read past the end, or an array longer than the bytes
+/// left, throws OracleFileError(kCorrupt) naming the section.
+class ByteReader {
+ public:
+  ByteReader(std::string_view bytes, std::string section)
+      : bytes_(bytes), section_(std::move(section)) {}
+
+  template <typename T>
+  T Value() {
+    static_assert(IsBytes<T>::value, "Value reads plain values");
+    Need(sizeof(T));
+    T value;
+    std::memcpy(static_cast<void*>(&value), bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return value;
+  }
+  template <typename T>
+  void Array(std::vector<T>* values) {
+    static_assert(IsBytes<T>::value, "Array reads arrays of plain values");
+    const auto count = Value<std::uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(T)) Fail("an array is longer than the section");
+    values->resize(static_cast<std::size_t>(count));
+    std::memcpy(static_cast<void*>(values->data()), bytes_.data() + at_,
+                values->size() * sizeof(T));
+    at_ += values->size() * sizeof(T);
+  }
+  /// An Array of `expected` elements (else kCorrupt: the sizes disagree).
+  template <typename T>
+  void ArrayOf(std::size_t expected, std::vector<T>* values) {
+    Array(values);
+    if (values->size() != expected) Fail("an array's size disagrees with the structure's");
+  }
+  void Bools(std::vector<bool>* values) {
+    std::vector<std::uint8_t> bytes;
+    Array(&bytes);
+    values->assign(bytes.begin(), bytes.end());
+  }
+  /// Throws kCorrupt unless `condition` (a consistency check of what was read).
+  void Check(bool condition, const char* what) const {
+    if (!condition) Fail(what);
+  }
+  bool done() const { return at_ == bytes_.size(); }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw OracleFileError(OracleFileProblem::kCorrupt, "section " + section_ + ": " + what);
+  }
+
+ private:
+  void Need(std::size_t n) const {
+    if (n > bytes_.size() - at_) Fail("ends early");
+  }
+  std::string_view bytes_;
+  std::string section_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace occlude::collision::detail
