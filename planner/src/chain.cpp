@@ -146,7 +146,9 @@ Candidates EachStart(const SearchContext& c, const std::vector<Vector6d>& starts
     tracker->Done();
   });
   for (std::size_t i = 0; i < all.size(); ++i) {
-    if (ran[i]) out.proposals.push_back(std::move(all[i]));
+    if (!ran[i]) continue;
+    out.evaluations += all[i].evaluations;
+    out.proposals.push_back(std::move(all[i]));
   }
   return out;
 }
@@ -221,7 +223,7 @@ Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& s
   const std::vector<std::size_t> kept = BestDistinctCoarse(c, coarse, refine);
   for (std::size_t i = 0; i < starts.size(); ++i) {
     if (!coarse.ran[i]) continue;
-    out.coarse_evaluations += coarse.result[i].evaluations;
+    out.evaluations += coarse.result[i].evaluations;
     out.coarse_cpu += coarse.cpu[i];
   }
   tracker->total = static_cast<int>(
@@ -239,8 +241,10 @@ Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& s
     p.cpu_seconds = coarse.cpu[i] + CpuSeconds() - t0;
     tracker->Done();
   });
-  for (std::size_t k = 0; k < kept.size(); ++k)
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    out.evaluations += out.proposals[k].evaluations - coarse.result[kept[k]].evaluations;
     out.fine_cpu += out.proposals[k].cpu_seconds - coarse.cpu[kept[k]];
+  }
   return out;
 }
 

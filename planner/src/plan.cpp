@@ -93,8 +93,7 @@ PlanResult Plan(const OracleSchedule& schedule, const PlanRequest& request) {
           : detail::EachStart(c, starts, &tracker);
   result.starts_skipped = tracker.skipped.load();
   result.starts_run = static_cast<int>(starts.size()) - result.starts_skipped;
-  result.total_evaluations = global_evals + candidates.coarse_evaluations;
-  for (const Proposal& p : candidates.proposals) result.total_evaluations += p.evaluations;
+  result.total_evaluations = global_evals + candidates.evaluations;
   result.cpu_seconds = detail::CpuSeconds() - cpu0 + candidates.worker_cpu;
   result.proposals = detail::BestDistinct(candidates.proposals, problem, request.max_proposals);
   result.wall_seconds =

@@ -159,10 +159,11 @@ struct Tracker {
 };
 
 /// Chains run from a list of starts: their finished proposals (in start order), the oracle
-/// queries of the coarse runs, and the CPU seconds of the helper threads.
+/// queries of all the runs (each counted once; a proposal's own count includes its coarse
+/// run's), and the CPU seconds of the helper threads.
 struct Candidates {
   std::vector<Proposal> proposals;
-  int coarse_evaluations = 0;
+  int evaluations = 0;
   double worker_cpu = 0.0;
   /// CoarseThenFine: thread CPU seconds of the coarse runs and of the refinements (summed
   /// over the jobs).
