@@ -146,8 +146,11 @@ GlobalResult GlobalSearch(const OracleSchedule& schedule, const GlobalRequest& r
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = detail::CpuSeconds();
   ValidateGlobalRequest(request);
-  if (schedule.empty() || schedule.front().oracle == nullptr)
+  if (schedule.empty())
     throw std::invalid_argument("schedule: empty; give at least one OracleStage");
+  for (const OracleStage& s : schedule) {
+    if (s.oracle == nullptr) throw std::invalid_argument("schedule: an OracleStage has no oracle");
+  }
   CheckCrownsFaceOut(schedule.back().oracle->lower_tree().mesh(), request.lower_L, "lower");
   CheckCrownsFaceOut(schedule.back().oracle->upper_tree().mesh(), request.upper_U, "upper");
   GlobalResult result;

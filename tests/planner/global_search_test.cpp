@@ -203,6 +203,9 @@ TEST(GlobalSearchTest, RejectsBadArchesAndSettings) {
   g.local.max_penetration_mm = -1.0;
   ExpectRejected(g, "PlanRequest.max_penetration_mm");
   EXPECT_THROW(GlobalSearch({}, Request()), std::invalid_argument);
+  OracleSchedule no_oracle = test::CoarseToFine();
+  no_oracle.back().oracle = nullptr;
+  EXPECT_THROW(GlobalSearch(no_oracle, Request()), std::invalid_argument);
 }
 
 // The scan visits every grid pose: per axis the multiples of the step within the range.
