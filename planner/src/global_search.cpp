@@ -30,6 +30,7 @@ void ValidateGlobalRequest(const GlobalRequest& r) {
   ValidateRequest(r.local);
   ValidateJawArches(r.lower_L, r.upper_U);
   detail::ValidateScanSettings(r.scan);
+  ValidateSeatRanking(r.ranking);
   if (!(std::isfinite(r.alignment.overjet_mm) && std::isfinite(r.alignment.overbite_mm) &&
         r.alignment.overjet_mm >= 0.0 && r.alignment.overbite_mm >= 0.0 &&
         r.alignment.overjet_mm <= 10.0 && r.alignment.overbite_mm <= 10.0)) {
@@ -109,18 +110,36 @@ detail::Candidates RefineBasins(const detail::SearchContext& c, const GlobalRequ
   return out;
 }
 
-// The proposals with their shifts, and the warnings they call for.
-void Report(const detail::SearchContext& c, const GlobalRequest& g,
-            const detail::Candidates& candidates, GlobalResult* result) {
-  const detail::Problem& problem = *c.problem;
-  const Eigen::Isometry3d& X_aligned = result->alignment.X_LU;
-  for (Proposal& p : detail::BestDistinct(candidates.proposals, problem, g.local.max_proposals)) {
+// The distinct seats of the candidates (feasible first, best seat cost first) with their shifts.
+std::vector<GlobalProposal> DistinctSeats(const detail::Problem& problem, const GlobalRequest& g,
+                                          const detail::Candidates& candidates,
+                                          const Eigen::Isometry3d& X_aligned) {
+  const int all = static_cast<int>(candidates.proposals.size());
+  std::vector<GlobalProposal> seats;
+  for (Proposal& p : detail::BestDistinct(candidates.proposals, problem, all)) {
     GlobalProposal gp;
     gp.from_aligned = ShiftBetween(X_aligned, p.X_LU, problem.pivot_L, g.lower_L);
     gp.from_given = ShiftBetween(g.local.X_LU_start, p.X_LU, problem.pivot_L, g.lower_L);
     gp.basin = p.start_index;
     gp.proposal = std::move(p);
-    result->proposals.push_back(std::move(gp));
+    seats.push_back(std::move(gp));
+  }
+  return seats;
+}
+
+// The seats ranked by the request's ranking, and the warnings they call for.
+void Report(const detail::SearchContext& c, const GlobalRequest& g,
+            const detail::Candidates& candidates, GlobalResult* result) {
+  std::vector<GlobalProposal> seats =
+      DistinctSeats(*c.problem, g, candidates, result->alignment.X_LU);
+  RankedSeats ranked = RankSeats(std::move(seats), g.ranking, g.local.max_proposals);
+  result->proposals = std::move(ranked.proposals);
+  result->excluded = std::move(ranked.excluded);
+  if (result->proposals.empty() && !result->excluded.empty()) {
+    result->warnings.push_back(
+        "every seat found breaks a hard clinical constraint (see the excluded seats): relax "
+        "the constraints or widen the scan");
+    return;
   }
   if (result->proposals.empty() || !result->proposals.front().proposal.evaluation.feasible) {
     result->warnings.push_back(

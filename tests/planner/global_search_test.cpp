@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <utility>
 
 #include "planner_fixture.h"
 
@@ -200,6 +202,9 @@ TEST(GlobalSearchTest, RejectsBadArchesAndSettings) {
   g.alignment.overjet_mm = 50.0;
   ExpectRejected(g, "GlobalRequest.alignment");
   g = Request();
+  g.ranking.comparable_contact = -0.5;
+  ExpectRejected(g, "SeatRanking.comparable_contact");
+  g = Request();
   g.local.max_penetration_mm = -1.0;
   ExpectRejected(g, "PlanRequest.max_penetration_mm");
   EXPECT_THROW(GlobalSearch({}, Request()), std::invalid_argument);
@@ -220,6 +225,86 @@ TEST(GlobalSearchTest, ScansTheWholeGrid) {
                                        values(s.lateral_range_mm, s.lateral_step_mm) *
                                        values(s.yaw_range_deg, s.yaw_step_deg) *
                                        values(s.pitch_range_deg, s.pitch_step_deg));
+}
+
+// The molar relationship (clinical.md) of the synthetic pair at X_LU, mean of both sides, mm:
+// the upper first molar's mb cusp from the lower first molar's buccal groove along the lower's
+// mesio-distal direction (+ = upper mesial). 0 at the designed bite, about +7 at class2_shift_L.
+double MolarOffset(const Eigen::Isometry3d& X_LU) {
+  const io::SyntheticJawPair& pair = test::Synthetic().pair;
+  auto at = [&pair](io::Jaw jaw, int fdi, io::LandmarkType type) {
+    for (const io::Landmark& m : pair.landmarks) {
+      if (m.jaw == jaw && m.tooth_fdi == fdi && m.type == type) return m.p;
+    }
+    ADD_FAILURE() << "no landmark " << fdi << " " << io::ToString(type);
+    return Eigen::Vector3d(Eigen::Vector3d::Zero());
+  };
+  const Eigen::Vector3d occlusal = pair.occlusal_axis_L;
+  double sum = 0.0;
+  for (const auto& [upper, lower] : {std::pair{16, 46}, std::pair{26, 36}}) {
+    using T = io::LandmarkType;
+    const Eigen::Vector3d groove = 0.5 * (at(io::Jaw::kLower, lower, T::kMbCusp) +
+                                          at(io::Jaw::kLower, lower, T::kMiddleBuccalCusp));
+    Eigen::Vector3d t =
+        at(io::Jaw::kLower, lower, T::kMesial) - at(io::Jaw::kLower, lower, T::kDistal);
+    t = (t - t.dot(occlusal) * occlusal).normalized();
+    sum += (X_LU * at(io::Jaw::kUpper, upper, T::kMbCusp) - groove).dot(t);
+  }
+  return 0.5 * sum;
+}
+
+// A judge that asks for the molar relationship `target_mm` (the ranking term |offset - target|),
+// and with `hard` admits only seats within the Class I band of it (1.5 mm, clinical.md).
+SeatRanking MolarRanking(double target_mm, bool hard) {
+  SeatRanking ranking;
+  ranking.judge = [target_mm, hard](const GlobalProposal& seat) {
+    SeatJudgement j;
+    j.penalty = std::abs(MolarOffset(seat.proposal.X_LU) - target_mm);
+    j.admissible = !hard || j.penalty <= 1.5;
+    return j;
+  };
+  return ranking;
+}
+
+// Started a cusp period off (the upper given at the full-cusp Class II seat, class2_shift_L from
+// the bite), the search finds both seats; a judge preferring Class I molars ranks the designed
+// bite first, one preferring the Class II finish ranks that first, and as a hard constraint
+// Class I sets the Class II seat aside.
+TEST(GlobalSearchTest, AClinicalJudgeRanksTheSeats) {
+  const auto& c = test::Synthetic();
+  GlobalRequest g = Request();
+  g.local.X_LU_start = Eigen::Translation3d(c.pair.class2_shift_L) * c.pair.X_LU;
+  g.local.max_proposals = 8;  // every distinct seat, so that the re-rankings below see them all
+  // Along the arch only (both seats lie on it), cheap enough for the sanitizer lane.
+  g.scan = {};
+  g.scan.sagittal_range_mm = 10.0;
+  g.scan.sagittal_step_mm = 1.0;
+  g.scan.lateral_range_mm = g.scan.yaw_range_deg = g.scan.pitch_range_deg = 0.0;
+  g.scan.max_basins = 6;
+  g.scan.max_refined = 4;
+  g.ranking = MolarRanking(0.0, false);
+  const GlobalResult r = GlobalSearch(test::CoarseToFine(), g);
+  ASSERT_GE(r.proposals.size(), 2u);
+  const GlobalProposal& first = r.proposals.front();
+  const PoseError e = ToDesign(first.proposal.X_LU);
+  EXPECT_LE(e.translation_mm, kBarMm);
+  EXPECT_LE(e.rotation_deg, kBarDeg);
+  EXPECT_NEAR(first.from_given.sagittal_mm, -c.pair.class2_shift_L.norm(), 1.0);
+  EXPECT_LE(first.judgement.penalty, 1.0);
+  bool class2_found = false;
+  for (const GlobalProposal& p : r.proposals)
+    class2_found |= std::abs(MolarOffset(p.proposal.X_LU) - 7.0) <= 1.5;
+  ASSERT_TRUE(class2_found) << "the Class II seat is not among the proposals";
+
+  const RankedSeats class2 = RankSeats(r.proposals, MolarRanking(7.0, false), 8);
+  EXPECT_NEAR(MolarOffset(class2.proposals.front().proposal.X_LU), 7.0, 1.5);
+  const RankedSeats hard = RankSeats(r.proposals, MolarRanking(0.0, true), 8);
+  ASSERT_FALSE(hard.proposals.empty());
+  EXPECT_TRUE(hard.proposals.front().proposal.X_LU.isApprox(first.proposal.X_LU, 0.0));
+  for (const GlobalProposal& p : hard.proposals)
+    EXPECT_LE(std::abs(MolarOffset(p.proposal.X_LU)), 1.5);
+  ASSERT_FALSE(hard.excluded.empty());
+  EXPECT_EQ(hard.proposals.size() + hard.excluded.size(), r.proposals.size());
 }
 
 // The seat of a pose is the local search from it: one start, the request's solver.

@@ -21,6 +21,7 @@
 
 #include "occlude/planner/arch_alignment.h"
 #include "occlude/planner/plan.h"
+#include "occlude/planner/seat_ranking.h"
 
 namespace occlude::planner {
 
@@ -62,6 +63,10 @@ struct GlobalRequest {
   /// given: it only sets GlobalProposal::from_given. max_proposals: the seats returned.
   /// num_starts, num_global_samples, pivot_L, locked, max_seconds and on_progress are not used.
   PlanRequest local;
+  /// The clinical ranking of the distinct seats (seat_ranking.h): every distinct refined seat is
+  /// judged, the inadmissible ones go to GlobalResult::excluded, the rest ranked, and the best
+  /// local.max_proposals returned. Without a judge: by seat cost.
+  SeatRanking ranking;
   /// Called serialized from the search's threads: phase, work done, work in the phase.
   enum class Phase { kScan, kBasins, kRefine };
   std::function<void(Phase phase, int done, int total)> on_progress;
@@ -79,18 +84,12 @@ struct ScanBasin {
   double contact_area_mm2 = 0.0;  ///< on the scan's samples (within the contact band)
 };
 
-struct GlobalProposal {
-  Proposal proposal;  ///< its params relative to the aligned pose about the pivot
-  ArchShift from_aligned;
-  ArchShift from_given;  ///< from the request's local.X_LU_start
-  int basin = 0;         ///< index into GlobalResult::basins it was refined from
-};
-
 struct GlobalResult {
   ArchAlignment alignment;
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< the pivot (L, at the aligned pose)
   std::vector<ScanBasin> basins;                      ///< best first (scan seat cost)
-  std::vector<GlobalProposal> proposals;  ///< distinct seats, feasible first, best seat cost first
+  std::vector<GlobalProposal> proposals;  ///< distinct seats as request.ranking ranks them
+  std::vector<GlobalProposal> excluded;   ///< distinct seats the judge found inadmissible
   std::vector<std::string> warnings;      ///< e.g. the curve fit rejected, no feasible seat found
   int scan_poses = 0;
   int total_evaluations = 0;
