@@ -19,9 +19,9 @@ namespace {
 
 // The designed bite is a seat: its own local search stays within this of it (plan_test.cpp).
 constexpr double kBarMm = 0.3, kBarDeg = 1.0;
-constexpr double kPenetrationLimitMm = 0.05 + 0.004;  // the limit and the settle's tolerance
+constexpr double kGlobalPenetrationLimitMm = 0.05 + 0.004;  // the limit and the settle's tolerance
 
-JawArch LowerArch() {
+JawArch SyntheticLowerArch() {
   const auto& c = test::Synthetic();
   return JawArchFromTeeth(ToothTops(c.pair.lower_L, Eigen::Vector3d::UnitY()),
                           Eigen::Vector3d::UnitY());
@@ -34,7 +34,7 @@ JawArch UpperArchIn(const io::TriangleMesh& upper, const Eigen::Vector3d& occlus
 // A scan small enough for the sanitizer lane, wide enough for the synthetic pair.
 GlobalRequest Request() {
   GlobalRequest g;
-  g.lower_L = LowerArch();
+  g.lower_L = SyntheticLowerArch();
   g.upper_U = UpperArchIn(test::Synthetic().pair.upper_U, -Eigen::Vector3d::UnitY());
   g.local.num_threads = 2;
   g.local.max_proposals = 4;
@@ -86,7 +86,7 @@ TEST(GlobalSearchTest, EveryPoseIsFiniteAndFeasibleOrFlagged) {
     const Proposal& p = r.proposals[k].proposal;
     EXPECT_TRUE(p.X_LU.matrix().allFinite()) << k;
     if (p.evaluation.feasible) {
-      EXPECT_LE(p.evaluation.constrained_penetration_mm, kPenetrationLimitMm) << k;
+      EXPECT_LE(p.evaluation.constrained_penetration_mm, kGlobalPenetrationLimitMm) << k;
     } else {
       EXPECT_TRUE(p.status == SolveStatus::kInfeasible || p.status == SolveStatus::kFailed) << k;
     }
@@ -170,7 +170,7 @@ TEST(GlobalSearchTest, ReportsProgressInPhaseOrder) {
   for (const auto& [phase, dt] : calls) EXPECT_LE(dt.first, dt.second) << ToString(phase);
 }
 
-void ExpectRejected(const GlobalRequest& g, const std::string& words) {
+void ExpectSearchRejected(const GlobalRequest& g, const std::string& words) {
   try {
     GlobalSearch(test::CoarseToFine(), g);
     ADD_FAILURE() << "accepted; expected an error naming '" << words << "'";
@@ -182,31 +182,31 @@ void ExpectRejected(const GlobalRequest& g, const std::string& words) {
 TEST(GlobalSearchTest, RejectsBadArchesAndSettings) {
   GlobalRequest g = Request();
   g.upper_U = g.lower_L;  // the lower's arch given for the upper
-  ExpectRejected(g, "cannot face each other");
+  ExpectSearchRejected(g, "cannot face each other");
   g = Request();
   // Upside down: occlusal and lateral both reversed (the handedness survives), so the arch
   // points into the upper jaw.
   g.upper_U.occlusal_J = -g.upper_U.occlusal_J;
   g.upper_U.lateral_J = -g.upper_U.lateral_J;
-  ExpectRejected(g, "upper arch: occlusal_J points into the jaw");
+  ExpectSearchRejected(g, "upper arch: occlusal_J points into the jaw");
   g = Request();
   g.upper_U.curve_J.clear();  // no teeth found
-  ExpectRejected(g, "curve_J: needs at least 4 points");
+  ExpectSearchRejected(g, "curve_J: needs at least 4 points");
   g = Request();
   g.scan.sagittal_step_mm = 0.0;
-  ExpectRejected(g, "GlobalRequest.scan.sagittal_step_mm");
+  ExpectSearchRejected(g, "GlobalRequest.scan.sagittal_step_mm");
   g = Request();
   g.scan.max_refined = g.scan.max_basins + 1;
-  ExpectRejected(g, "GlobalRequest.scan.max_refined");
+  ExpectSearchRejected(g, "GlobalRequest.scan.max_refined");
   g = Request();
   g.alignment.overjet_mm = 50.0;
-  ExpectRejected(g, "GlobalRequest.alignment");
+  ExpectSearchRejected(g, "GlobalRequest.alignment");
   g = Request();
   g.ranking.comparable_contact = -0.5;
-  ExpectRejected(g, "SeatRanking.comparable_contact");
+  ExpectSearchRejected(g, "SeatRanking.comparable_contact");
   g = Request();
   g.local.max_penetration_mm = -1.0;
-  ExpectRejected(g, "PlanRequest.max_penetration_mm");
+  ExpectSearchRejected(g, "PlanRequest.max_penetration_mm");
   EXPECT_THROW(GlobalSearch({}, Request()), std::invalid_argument);
   OracleSchedule no_oracle = test::CoarseToFine();
   no_oracle.back().oracle = nullptr;
