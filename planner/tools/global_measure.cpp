@@ -20,6 +20,7 @@
 //
 //   occlude_global_measure <case folder | synthetic> [starts=20] [kinds=sagittal,apart]
 //                          [seed=1] [voxels=0.8,0.4] [threads=1] [verbose=0]
+// (OCCLUDE_GLOBAL_BASINS=<max_basins>,<max_refined> overrides the scan's defaults 12,6.)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -199,6 +200,8 @@ Outcome RunStart(const Reference& ref, const std::string& kind, std::mt19937& rn
   g.local = ref.local;
   g.lower_L = ref.lower_arch;
   g.upper_U = ref.c->upper_arch.ArchIn(X_file);
+  if (const char* b = std::getenv("OCCLUDE_GLOBAL_BASINS"))  // max_basins,max_refined
+    std::sscanf(b, "%d,%d", &g.scan.max_basins, &g.scan.max_refined);
   if (kind == "noisy") g.upper_U = Noisy(g.upper_U, rng);
   Outcome o;
   if (kind == "reframe") {
