@@ -119,6 +119,96 @@ class ClosureCost final : public ceres::SizedCostFunction<1, 6> {
   double c_;
 };
 
+// The free DOFs' complement: indices whose bounds are equal (locked).
+std::vector<int> LockedDofs(const Problem& problem) {
+  std::vector<int> locked;
+  for (int i = 0; i < kNumDof; ++i) {
+    if (problem.upper[i] <= problem.lower[i]) locked.push_back(i);
+  }
+  return locked;
+}
+
+// The least-squares problem of one round on the ambient parameters z: a hinge and an
+// attraction residual per sample of `model`, the optional closure, the manifold and the bounds.
+void AddSeatProblem(const SurfaceResiduals::Impl& model, const ResidualSettings& settings,
+                    const Problem& problem, const std::vector<int>& locked, Vector6d* z,
+                    ceres::Problem* lsq) {
+  for (std::size_t i = 0; i < model.area.size(); ++i) {
+    lsq->AddResidualBlock(
+        new SampleCost(&model, i, 0),
+        new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) *
+                             settings.penetration_huber_mm),
+        z->data());
+    lsq->AddResidualBlock(
+        new SampleCost(&model, i, 1),
+        new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z->data());
+  }
+  if (settings.closure_weight > 0.0 && problem.settle_dir.squaredNorm() > 0.0) {
+    double total_area = 0.0;
+    for (const double a : model.area) total_area += a;
+    lsq->AddResidualBlock(new ClosureCost(problem.settle_dir, settings.closure_weight * total_area),
+                          nullptr, z->data());
+  }
+  if (!locked.empty()) {
+    lsq->SetManifold(z->data(), new ceres::SubsetManifold(6, locked));
+  } else {
+    lsq->SetManifold(z->data(), new PivotPoseManifold);
+  }
+  const Vector6d lo = AmbientFromX(problem.lower), hi = AmbientFromX(problem.upper);
+  for (int i = 0; i < kNumDof; ++i) {
+    if (problem.upper[i] > problem.lower[i]) {
+      lsq->SetParameterLowerBound(z->data(), i, lo[i]);
+      lsq->SetParameterUpperBound(z->data(), i, hi[i]);
+    }
+  }
+}
+
+ceres::Solver::Options RoundOptions() {
+  ceres::Solver::Options opts;
+  opts.linear_solver_type = ceres::DENSE_QR;
+  opts.max_num_iterations = 25;
+  opts.num_threads = 1;
+  opts.function_tolerance = 1e-7;
+  opts.parameter_tolerance = 1e-7;
+  opts.logging_type = ceres::SILENT;
+  return opts;
+}
+
+// One round of solve and settle from *x: the samples near the lower at *x, Ceres on them, the
+// clamped result settled along the occlusal axis. Updates *x, the result's evaluations and
+// message; returns false (with the result's status and message set) when the round failed.
+bool SolveAndSettle(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
+                    const ResidualSettings& settings, const std::vector<int>& locked, Vector6d* x,
+                    LocalResult* result) {
+  const Eigen::Isometry3d X_base = PoseOf(problem, *x);
+  const std::vector<bool> spikes = SpikeSamples(stage, samples, X_base, problem);
+  const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L,
+                                     settings, 4000, &spikes);
+  if (model.area.empty()) {
+    result->status = SolveStatus::kFailed;  // nothing within reach to seat on
+    result->message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
+    return false;
+  }
+  ceres::Problem::Options popts;
+  ceres::Problem lsq(popts);
+  Vector6d z = AmbientFromX(*x);
+  AddSeatProblem(model, settings, problem, locked, &z, &lsq);
+  ceres::Solver::Summary summary;
+  ceres::Solve(RoundOptions(), &lsq, &summary);
+  result->evaluations += summary.num_residual_evaluations;
+  if (!z.allFinite() || summary.termination_type == ceres::FAILURE) {
+    result->status = SolveStatus::kFailed;
+    result->message = "ceres: " + summary.message;
+    return false;
+  }
+  const Vector6d moved = Clamp(problem, XFromAmbient(z));
+  int settle_evals = 0;
+  *x = SettleOnSet(stage, samples, problem, moved, &settle_evals);
+  result->evaluations += settle_evals;
+  result->message = "ceres: " + summary.BriefReport();
+  return true;
+}
+
 }  // namespace
 
 // The rounds of solve-and-settle stop when a round moves no parameter by more than this
@@ -127,95 +217,28 @@ constexpr double kOuterTolerance = 0.005;
 
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations) {
-  const PlanRequest& req = *problem.request;
-  const ResidualSettings settings = SeatSettings(stage, req);
+  const ResidualSettings settings = SeatSettings(stage, *problem.request);
   LocalResult result;
   result.x = x0;
   result.status = SolveStatus::kMaxIterations;
-  Vector6d x = x0;
-  double change = 0.0;
-  int rounds = 0;
-  bool locked_any = false;
-  std::vector<int> locked;
-  for (int i = 0; i < kNumDof; ++i) {
-    if (problem.upper[i] <= problem.lower[i]) locked.push_back(i);
-  }
-  locked_any = !locked.empty();
+  const std::vector<int> locked = LockedDofs(problem);
   if (locked.size() == static_cast<std::size_t>(kNumDof)) {
     result.status = SolveStatus::kConverged;
     result.message = "all DOFs locked";
     return result;
   }
+  Vector6d x = x0;
+  double change = 0.0;
+  int rounds = 0;
   for (int outer = 0; outer < max_outer; ++outer) {
     if (result.evaluations >= max_evaluations) {
       result.status = SolveStatus::kMaxEvaluations;
       break;
     }
     ++rounds;
-    const Eigen::Isometry3d X_base = PoseOf(problem, x);
-    const std::vector<bool> spikes = SpikeSamples(stage, samples, X_base, problem);
-    const SurfaceResiduals::Impl model(stage, samples, X_base, problem.X_ref, problem.pivot_L,
-                                       settings, 4000, &spikes);
-    if (model.area.empty()) {
-      result.status = SolveStatus::kFailed;  // nothing within reach to seat on
-      result.message = "ceres: no samples within " + std::to_string(settings.range_mm) + " mm";
-      result.x = x;
-      return result;
-    }
-    ceres::Problem::Options popts;
-    ceres::Problem lsq(popts);
-    Vector6d z = AmbientFromX(x);
-    for (std::size_t i = 0; i < model.area.size(); ++i) {
-      lsq.AddResidualBlock(
-          new SampleCost(&model, i, 0),
-          new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) *
-                               settings.penetration_huber_mm),
-          z.data());
-      lsq.AddResidualBlock(
-          new SampleCost(&model, i, 1),
-          new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z.data());
-    }
-    const double closure_weight = settings.closure_weight;
-    if (closure_weight > 0.0 && problem.settle_dir.squaredNorm() > 0.0) {
-      double total_area = 0.0;
-      for (const double a : model.area) total_area += a;
-      lsq.AddResidualBlock(new ClosureCost(problem.settle_dir, closure_weight * total_area),
-                           nullptr, z.data());
-    }
-    if (locked_any) {
-      lsq.SetManifold(z.data(), new ceres::SubsetManifold(6, locked));
-    } else {
-      lsq.SetManifold(z.data(), new PivotPoseManifold);
-    }
-    const Vector6d lo = AmbientFromX(problem.lower), hi = AmbientFromX(problem.upper);
-    for (int i = 0; i < kNumDof; ++i) {
-      if (problem.upper[i] > problem.lower[i]) {
-        lsq.SetParameterLowerBound(z.data(), i, lo[i]);
-        lsq.SetParameterUpperBound(z.data(), i, hi[i]);
-      }
-    }
-    ceres::Solver::Options opts;
-    opts.linear_solver_type = ceres::DENSE_QR;
-    opts.max_num_iterations = 25;
-    opts.num_threads = 1;
-    opts.function_tolerance = 1e-7;
-    opts.parameter_tolerance = 1e-7;
-    opts.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(opts, &lsq, &summary);
-    result.evaluations += summary.num_residual_evaluations;
-    if (!z.allFinite() || summary.termination_type == ceres::FAILURE) {
-      result.status = SolveStatus::kFailed;
-      result.message = "ceres: " + summary.message;
-      break;
-    }
-    const Vector6d moved = Clamp(problem, XFromAmbient(z));
-    int settle_evals = 0;
-    const Vector6d settled = SettleOnSet(stage, samples, problem, moved, &settle_evals);
-    result.evaluations += settle_evals;
-    change = (settled - x).cwiseAbs().maxCoeff();
-    x = settled;
-    result.message = "ceres: " + summary.BriefReport();
+    const Vector6d before = x;
+    if (!SolveAndSettle(stage, samples, problem, settings, locked, &x, &result)) break;
+    change = (x - before).cwiseAbs().maxCoeff();
     if (change < kOuterTolerance) {
       result.status = SolveStatus::kConverged;
       break;

@@ -36,7 +36,8 @@ Vector6d Clamp(const Problem& problem, const Vector6d& x) {
   return x.cwiseMax(problem.lower).cwiseMin(problem.upper);
 }
 
-Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request) {
+Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request,
+                    const collision::ArchFrame* arch) {
   ValidateRequest(request);
   if (schedule.empty())
     throw std::invalid_argument("schedule: empty; give at least one OracleStage");
@@ -47,7 +48,7 @@ Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request) 
   Problem p;
   p.request = &request;
   p.X_ref = request.X_LU_start;
-  p.arch = finest.arch();
+  p.arch = arch ? *arch : finest.arch();
   const io::TriangleMesh& upper_U = finest.upper_tree().mesh();
   p.pivot_L = request.pivot_L ? *request.pivot_L
                               : collision::UpperOcclusalCentre(upper_U, p.X_ref, p.arch.occlusal_L);

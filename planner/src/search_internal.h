@@ -1,14 +1,21 @@
 // Internals shared by the planner's solvers: the occlusal sample set each stage
 // evaluates, the problem (pivot, bounds, locks) as a 6-vector of parameters
 // (translation mm, rotation deg), the fast set evaluation, the settle along
-// the occlusal axis, and the local and global solvers.
+// the occlusal axis, the local and global solvers, and the solver chain per
+// start that Plan and the global search share.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <functional>
+#include <mutex>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "occlude/planner/least_squares.h"
@@ -56,7 +63,9 @@ struct Problem {
   Vector6d lower = Vector6d::Zero(), upper = Vector6d::Zero();  ///< bounds (locked: 0, 0)
   std::vector<Eigen::Vector3d> ref_points_U;
 };
-Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request);
+/// The problem of `request` on `schedule`; its arch frame is the finest oracle's, or `arch`.
+Problem MakeProblem(const OracleSchedule& schedule, const PlanRequest& request,
+                    const collision::ArchFrame* arch = nullptr);
 
 Eigen::Isometry3d PoseOf(const Problem& problem, const Vector6d& x);
 Vector6d ParamsOf(const Problem& problem, const Eigen::Isometry3d& X_LU);
@@ -115,5 +124,80 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
 std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& samples,
                                   const Problem& problem, int count, std::uint32_t seed,
                                   int* evaluations);
+
+/// A search on a schedule: the problem and the occlusal sample set of each stage.
+struct SearchContext {
+  const OracleSchedule* schedule = nullptr;
+  const Problem* problem = nullptr;
+  std::vector<SampleSet> sets;  ///< per stage (stages of equal spacing share equal sets)
+};
+/// The sample sets of every stage of `schedule`, taken at the problem's reference pose.
+SearchContext MakeSearchContext(const OracleSchedule& schedule, const Problem& problem);
+
+/// The request's solver from `start` on stages [first, stop] (coarse-to-fine and nlopt-global
+/// walk them; the single-stage solvers run on the last stage only). Never throws; a failure or
+/// a non-finite pose gives status kFailed at the start pose.
+LocalResult SafeChain(const SearchContext& c, const Vector6d& start, std::size_t first,
+                      std::size_t stop);
+/// The final settle of a chain's result on the last stage's oracle and its evaluation.
+Proposal Finish(const SearchContext& c, int index, const LocalResult& r);
+/// The candidates best first (feasible before infeasible, then the lowest seat cost, then the
+/// least penetration; ties by position), keeping at most `max_count` distinct poses.
+std::vector<Proposal> BestDistinct(const std::vector<Proposal>& candidates, const Problem& problem,
+                                   int max_count);
+
+/// Progress and the wall-clock budget of the local solves (PlanRequest::max_seconds).
+struct Tracker {
+  const PlanRequest* request = nullptr;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  int total = 0;
+  std::atomic<int> done{0}, skipped{0};
+  std::mutex mutex;
+  std::function<void(int done, int total)> report;  ///< called serialized; may be empty
+  bool OutOfTime() const;
+  void Done();
+};
+
+/// Chains run from a list of starts: their finished proposals (in start order), the oracle
+/// queries of all the runs (each counted once; a proposal's own count includes its coarse
+/// run's), and the CPU seconds of the helper threads.
+struct Candidates {
+  std::vector<Proposal> proposals;
+  int evaluations = 0;
+  double worker_cpu = 0.0;
+  /// CoarseThenFine: thread CPU seconds of the coarse runs and of the refinements (summed
+  /// over the jobs).
+  double coarse_cpu = 0.0, fine_cpu = 0.0;
+};
+/// Every start through the whole chain (stages 0..last) and Finish; starts after the first
+/// are skipped when the tracker is out of time.
+Candidates EachStart(const SearchContext& c, const std::vector<Vector6d>& starts, Tracker* tracker);
+/// Every start on stage 0 only; the `refine_count` best distinct coarse seats (by the coarse
+/// seat cost) go on through stages 1..last and Finish: the fine models see only seats that
+/// can win. Starts after the first are skipped when the tracker is out of time.
+Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& starts,
+                          std::size_t refine_count, Tracker* tracker);
+
+/// Runs job(i) for i in [0, n) on up to `threads` std::threads; the results land in slots
+/// indexed by i, so they do not depend on the thread count. Returns the CPU seconds of the
+/// threads other than the caller (the caller's own are on its clock).
+template <typename Job>
+double ParallelFor(std::size_t n, int threads, Job job) {
+  std::atomic<std::size_t> next{0};
+  std::vector<double> cpu(static_cast<std::size_t>(std::max(1, threads)), 0.0);
+  auto worker = [&](int slot) {
+    const double t0 = CpuSeconds();
+    for (std::size_t i = next++; i < n; i = next++) job(i);
+    cpu[static_cast<std::size_t>(slot)] = CpuSeconds() - t0;
+  };
+  const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < count; ++t) pool.emplace_back(worker, t);
+  worker(0);
+  for (auto& t : pool) t.join();
+  double others = 0.0;
+  for (std::size_t t = 1; t < cpu.size(); ++t) others += cpu[t];
+  return others;
+}
 
 }  // namespace occlude::planner::detail

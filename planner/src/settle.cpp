@@ -48,92 +48,139 @@ std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& sample
   return spike;
 }
 
-SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
-                          const Eigen::Isometry3d& X_LU, const Problem& problem) {
-  const PlanRequest& req = *problem.request;
-  const double band = req.contact_band_mm, range = req.attraction_range_mm;
-  const ResidualSettings seat = SeatSettings(stage, req);
-  const double reach = std::max({range, seat.window_mm, 0.5});
-  const double deep_distance = -stage.oracle->lower_sdf().band_mm();
-  SetEvaluation e;
-  e.min_distance_mm = std::numeric_limits<double>::infinity();
-  // Pass 1: distances (deep samples at -band), and the spike patches among the penetrating.
-  const std::size_t n = samples.size();
-  std::vector<double> dist(n);
-  std::vector<char> known(n), deep(n);
+namespace {
+
+// Pass 1 of EvaluateSet: per sample its signed distance (unknown: -band when deep in the lower,
+// else the seat window), whether it is known and deep, and the penetrating samples.
+struct SetDistances {
+  std::vector<double> dist;
+  std::vector<char> known, deep;
   std::vector<PenetratingSample> pen;
   std::vector<std::size_t> pen_index;
+};
+
+SetDistances MeasureSet(const OracleStage& stage, const SampleSet& samples,
+                        const Eigen::Isometry3d& X_LU, double reach_mm, double window_mm) {
+  const double deep_distance = -stage.oracle->lower_sdf().band_mm();
+  const std::size_t n = samples.size();
+  SetDistances m;
+  m.dist.resize(n);
+  m.known.resize(n);
+  m.deep.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
     bool is_deep = false;
-    known[i] = StageDistance(stage, p_L, reach, &dist[i], nullptr, &is_deep) ? 1 : 0;
-    deep[i] = is_deep ? 1 : 0;
-    if (!known[i]) dist[i] = is_deep ? deep_distance : seat.window_mm;
-    if (known[i] ? dist[i] < 0.0 : is_deep) {
-      pen.push_back({p_L, -dist[i], samples.area_mm2[i]});
-      pen_index.push_back(i);
+    m.known[i] = StageDistance(stage, p_L, reach_mm, &m.dist[i], nullptr, &is_deep) ? 1 : 0;
+    m.deep[i] = is_deep ? 1 : 0;
+    if (!m.known[i]) m.dist[i] = is_deep ? deep_distance : window_mm;
+    if (m.known[i] ? m.dist[i] < 0.0 : is_deep) {
+      m.pen.push_back({p_L, -m.dist[i], samples.area_mm2[i]});
+      m.pen_index.push_back(i);
     }
   }
-  std::vector<char> spike(n, 0);
-  if (!pen.empty()) {
-    const std::vector<bool> member =
-        SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, SpikePatchCap(req),
-                               req.max_penetration_mm, SpikeShallowMm(req));
-    for (std::size_t k = 0; k < pen.size(); ++k) spike[pen_index[k]] = member[k] ? 1 : 0;
-  }
-  // Pass 2: costs and measures; spike samples are left out of the penalty and the measure.
-  std::vector<std::pair<double, double>> pen_kept;
+  return m;
+}
+
+// Per sample: a member of a spike patch among the penetrating samples of `m`.
+std::vector<char> SpikeFlags(const SetDistances& m, const SampleSet& samples,
+                             const PlanRequest& req) {
+  std::vector<char> spike(samples.size(), 0);
+  if (m.pen.empty()) return spike;
+  const std::vector<bool> member =
+      SpikeMembersForMeasure(m.pen, 2.5 * samples.spacing_mm, SpikePatchCap(req),
+                             req.max_penetration_mm, SpikeShallowMm(req));
+  for (std::size_t k = 0; k < m.pen.size(); ++k) spike[m.pen_index[k]] = member[k] ? 1 : 0;
+  return spike;
+}
+
+// What pass 2 of EvaluateSet gathers besides the SetEvaluation itself.
+struct SetTotals {
+  std::vector<std::pair<double, double>> pen_kept;  // (depth, area) of non-spike penetration
   double deep_area = 0.0, left = 0.0, right = 0.0, near_area = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double d = dist[i];
+};
+
+// Weight of a sample at gap d in the smooth contact score: 1 within the band, falling
+// smoothly to 0 at the attraction range.
+double SmoothWeight(double d, double band, double range) {
+  if (d <= band) return 1.0;
+  const double s = (d - band) / (range - band);
+  return (1.0 - s * s) * (1.0 - s * s);
+}
+
+// Pass 2: seat cost, contact, penetration and the smooth score; spike samples are left out of
+// the penalty and the measure.
+void AccumulateSet(const SampleSet& samples, const Eigen::Isometry3d& X_LU, const Problem& problem,
+                   const ResidualSettings& seat, const SetDistances& m,
+                   const std::vector<char>& spike, SetEvaluation* e, SetTotals* t) {
+  const PlanRequest& req = *problem.request;
+  const double band = req.contact_band_mm, range = req.attraction_range_mm;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double d = m.dist[i];
     const double a = samples.area_mm2[i];
     const bool attract = samples.facing[i] >= seat.attraction_min_facing;
     if (spike[i]) {
-      e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
-      e.seat_cost += SeatSampleCost(0.0, a, attract, seat);
+      e->max_penetration_mm = std::max(e->max_penetration_mm, -d);
+      e->seat_cost += SeatSampleCost(0.0, a, attract, seat);
       continue;
     }
-    e.seat_cost += SeatSampleCost(d, a, attract, seat);
-    if (!known[i]) {
-      if (deep[i]) {
-        ++e.deep;
-        deep_area += a;
+    e->seat_cost += SeatSampleCost(d, a, attract, seat);
+    if (!m.known[i]) {
+      if (m.deep[i]) {
+        ++e->deep;
+        t->deep_area += a;
       }
       continue;
     }
-    e.min_distance_mm = std::min(e.min_distance_mm, d);
+    e->min_distance_mm = std::min(e->min_distance_mm, d);
     if (d > range) continue;
-    double k = 1.0;
-    if (d > band) {
-      const double s = (d - band) / (range - band);
-      k = (1.0 - s * s) * (1.0 - s * s);
-    }
-    if (d >= 0.0 && d <= band) e.contact_area_mm2 += a;
-    if (d <= band) near_area += a;
+    const double k = SmoothWeight(d, band, range);
+    if (d >= 0.0 && d <= band) e->contact_area_mm2 += a;
+    if (d <= band) t->near_area += a;
     if (d < 0.0) {
-      pen_kept.emplace_back(-d, a);
-      e.max_penetration_mm = std::max(e.max_penetration_mm, -d);
+      t->pen_kept.emplace_back(-d, a);
+      e->max_penetration_mm = std::max(e->max_penetration_mm, -d);
       const double excess = -d - req.max_penetration_mm;
-      if (excess > 0.0) e.excess_rms_mm += a * excess * excess;
+      if (excess > 0.0) e->excess_rms_mm += a * excess * excess;
     }
-    e.smooth_score += a * k;
+    e->smooth_score += a * k;
     const Eigen::Vector3d rel = X_LU * samples.p_U[i] - problem.arch.origin_L;
     if (req.bilateral_posterior_weight > 0.0 &&
         rel.dot(problem.arch.anterior_L) <= problem.arch.anterior_split_mm) {
-      (rel.dot(problem.arch.lateral_L) >= 0.0 ? left : right) += a * k;
+      (rel.dot(problem.arch.lateral_L) >= 0.0 ? t->left : t->right) += a * k;
     }
   }
-  e.smooth_score -= req.bilateral_posterior_weight * std::abs(left - right);
-  e.excess_rms_mm = std::sqrt(e.excess_rms_mm / std::max(near_area, 1.0));
+}
+
+// The bilateral penalty, the excess RMS and the outlier-robust penetration from the totals.
+void FinishSet(const OracleStage& stage, const SampleSet& samples, const PlanRequest& req,
+               const SetTotals& t, SetEvaluation* e) {
+  e->smooth_score -= req.bilateral_posterior_weight * std::abs(t.left - t.right);
+  e->excess_rms_mm = std::sqrt(e->excess_rms_mm / std::max(t.near_area, 1.0));
   const double deep_depth = stage.oracle->lower_sdf().band_mm();
-  const double mean_area = e.deep > 0 ? deep_area / static_cast<double>(e.deep) : 0.0;
+  const double mean_area = e->deep > 0 ? t.deep_area / static_cast<double>(e->deep) : 0.0;
   // A cluster stands for spacing^2 of surface; a budget below one cluster would make the
   // coarse stages ignore the request's outlier handling, so allow at least one.
-  double budget = OutlierBudget(req, near_area);
+  double budget = OutlierBudget(req, t.near_area);
   if (budget > 0.0) budget = std::max(budget, 1.01 * samples.spacing_mm * samples.spacing_mm);
-  e.robust_penetration_mm = RobustPenetration(pen_kept, e.deep, deep_depth, mean_area, budget);
-  if (e.deep > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
-  e.feasible = e.robust_penetration_mm <= req.max_penetration_mm;
+  e->robust_penetration_mm = RobustPenetration(t.pen_kept, e->deep, deep_depth, mean_area, budget);
+  if (e->deep > 0) e->max_penetration_mm = std::max(e->max_penetration_mm, deep_depth);
+  e->feasible = e->robust_penetration_mm <= req.max_penetration_mm;
+}
+
+}  // namespace
+
+SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
+                          const Eigen::Isometry3d& X_LU, const Problem& problem) {
+  const PlanRequest& req = *problem.request;
+  const ResidualSettings seat = SeatSettings(stage, req);
+  const double reach = std::max({req.attraction_range_mm, seat.window_mm, 0.5});
+  const SetDistances m = MeasureSet(stage, samples, X_LU, reach, seat.window_mm);
+  const std::vector<char> spike = SpikeFlags(m, samples, req);
+  SetEvaluation e;
+  e.min_distance_mm = std::numeric_limits<double>::infinity();
+  SetTotals totals;
+  AccumulateSet(samples, X_LU, problem, seat, m, spike, &e, &totals);
+  FinishSet(stage, samples, req, totals, &e);
   return e;
 }
 

@@ -202,6 +202,27 @@ TEST(PlanTest, DeterministicForSeedAndThreads) {
   }
 }
 
+// The coarse-then-fine path (several starts on the coarse stage, the best distinct refined):
+// the same proposals, bit for bit, from one thread and from two.
+TEST(PlanTest, CoarseToFineSameForOneAndTwoThreads) {
+  PlanRequest req = PerturbedRequest(SolverKind::kCoarseToFine, 1.0, 2.0);
+  req.num_starts = 3;
+  req.num_global_samples = 6;
+  req.max_proposals = 2;
+  req.seed = 3;
+  const PlanResult one = Plan(test::CoarseToFine(), req);
+  req.num_threads = 2;
+  const PlanResult two = Plan(test::CoarseToFine(), req);
+  ASSERT_EQ(one.proposals.size(), two.proposals.size());
+  ASSERT_GE(one.starts_run, 2);
+  for (std::size_t i = 0; i < one.proposals.size(); ++i) {
+    EXPECT_TRUE(one.proposals[i].X_LU.isApprox(two.proposals[i].X_LU, 0.0)) << i;
+    EXPECT_EQ(one.proposals[i].start_index, two.proposals[i].start_index);
+    EXPECT_EQ(one.proposals[i].evaluations, two.proposals[i].evaluations);
+  }
+  EXPECT_EQ(one.total_evaluations, two.total_evaluations);
+}
+
 TEST(PlanTest, FarApartAndNestedStartsGiveFinitePoses) {
   const auto& c = Synthetic();
   for (const double offset : {6.0, -1.5}) {
