@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry_util.h"
 
@@ -17,8 +18,10 @@ constexpr int kMinCellsPerBin = 4;
 constexpr int kMaxGapBins = 6;  // gaps of up to this many empty bins are bridged
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr int kDegree = 6;               // of the radius polynomial: smooth below a tooth's width
-constexpr double kHuberMm = 1.0;         // radius residuals beyond this count less
+constexpr int kDegree = 8;        // of the radius polynomial: smooth below a tooth's width
+constexpr double kHuberMm = 1.0;  // radius residuals beyond this count less
+constexpr double kSymmetrySearchMm = 10.0;
+constexpr double kSymmetryFromMm = 3.0, kSymmetryToMm = 15.0;
 constexpr double kEndWeightShare = 0.2;  // end bins lighter than this share of the median: gingiva
 
 struct Bin {
@@ -211,6 +214,23 @@ std::vector<double> SmoothRadius(const std::vector<double>& radius,
   return out;
 }
 
+// ArchCurve::symmetry_s: the station within kSymmetrySearchMm of the apex minimising the
+// squared anterior differences of the stations kSymmetryFromMm-kSymmetryToMm on either side.
+double SymmetryAxis(const ArchCurve& curve) {
+  const double len = curve.Length();
+  double best_s = curve.apex_s, best = std::numeric_limits<double>::infinity();
+  for (double m = curve.apex_s - kSymmetrySearchMm; m <= curve.apex_s + kSymmetrySearchMm;
+       m += curve.step) {
+    if (m - kSymmetryToMm < 0.0 || m + kSymmetryToMm > len) continue;
+    double cost = 0.0;
+    for (double d = kSymmetryFromMm; d <= kSymmetryToMm; d += 1.0) {
+      cost += std::pow(curve.At(m + d).y() - curve.At(m - d).y(), 2);
+    }
+    if (cost < best) best = cost, best_s = m;
+  }
+  return best_s;
+}
+
 }  // namespace
 
 std::optional<ArchCurve> FitArchCurve(const HeightMap& map, const std::vector<double>& crown,
@@ -273,6 +293,7 @@ std::optional<ArchCurve> FitArchCurve(const HeightMap& map, const std::vector<do
     if (curve.q[k].y() > curve.q[apex].y()) apex = k;
   }
   curve.apex_s = step * static_cast<double>(apex);
+  curve.symmetry_s = SymmetryAxis(curve);
   return curve;
 }
 

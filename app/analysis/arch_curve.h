@@ -24,6 +24,9 @@ struct ArchCurve {
   Eigen::Vector2d centre{0.0, 0.0};  ///< the centre the rays start from
   std::vector<double> angle;         ///< polar angle of each station about the centre (decreasing)
   double apex_s = 0.0;               ///< arc length of the most anterior station
+  /// Arc length of the arch's mirror axis: the station about which points at equal arc length
+  /// on both sides (3-15 mm away) lie at equal anterior coordinates; near the apex.
+  double symmetry_s = 0.0;
 
   double Length() const { return q.size() < 2 ? 0.0 : step * static_cast<double>(q.size() - 1); }
   Eigen::Vector2d At(double s) const;

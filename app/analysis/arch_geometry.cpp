@@ -61,6 +61,12 @@ std::optional<ArchGeometry> BuildArchGeometry(const io::TriangleMesh& mesh, io::
   std::optional<ArchCurve> curve = FitArchCurve(g.top, g.crown, centre, options.curve_step_mm, why);
   if (!curve) return std::nullopt;
   g.curve = std::move(*curve);
+  g.cell_st.resize(g.top.height.size());
+  for (int c = 0; c < g.top.nx * g.top.ny; ++c) {
+    if (g.top.Filled(c)) g.cell_st[static_cast<std::size_t>(c)] = g.curve.Project(g.top.Centre(c));
+  }
+  g.vertex_st.reserve(mesh.num_vertices());
+  for (const auto& v : mesh.vertices) g.vertex_st.push_back(g.curve.Project(g.axes.Plane(v)));
   return g;
 }
 

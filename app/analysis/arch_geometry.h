@@ -15,10 +15,13 @@
 namespace occlude::analysis {
 
 struct ArchGeometry {
-  ViewAxes axes;             ///< e1 lateral, e2 anterior, up occlusal; origin on the occlusal plane
-  HeightMap top;             ///< the whole jaw seen along `axes.up_J`
-  ArchCurve curve;           ///< in `axes`' plane coordinates
-  double crown_floor = 0.0;  ///< crowns are the cells at least this high (plane at 0), mm
+  ViewAxes axes;    ///< e1 lateral, e2 anterior, up occlusal; origin on the occlusal plane
+  HeightMap top;    ///< the whole jaw seen along `axes.up_J`
+  ArchCurve curve;  ///< in `axes`' plane coordinates
+  std::vector<ArchCurve::Projection> cell_st;
+  std::vector<ArchCurve::Projection>
+      vertex_st;  ///< per mesh vertex: its (s, t)  ///< per cell of `top`: its (s, t) on the curve
+  double crown_floor = 0.0;   ///< crowns are the cells at least this high (plane at 0), mm
   std::vector<double> crown;  ///< per cell of `top`: its CrownWeights (0: not crown)
   double confidence = 0.0;    ///< of the orientation, in [0, 1]
 };

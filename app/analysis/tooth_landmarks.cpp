@@ -1,0 +1,259 @@
+// Landmark rules per tooth class (tooth_landmarks.h). Regions are in tooth coordinates relative
+// to the crown's middle: u_rel = (u - u_mid) / length in [-1/2, 1/2] (mesial positive) and the
+// side of v against the crown's middle across the arch.
+#include "tooth_landmarks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry_util.h"
+#include "occlusal_plane.h"
+
+namespace occlude::analysis {
+namespace {
+
+using io::LandmarkType;
+
+constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
+constexpr double kCuspProminenceMm = 0.05;
+constexpr double kIncisalSliceShare = 0.1;    // incisal edge: middle tenth of the crown's length
+constexpr double kCanineTipShare = 0.3;       // canine tip: within this of the middle
+constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
+constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
+constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
+constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
+constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
+constexpr double kClinicalCrownShare = 0.8;   // the gingiva covers the rest of the crown
+constexpr double kFacialHeightTolMm = 0.5;
+
+// Wheeler's anatomical crown heights (cervical line to cusp tip / incisal edge), positions 1-8.
+constexpr double kUpperCrownMm[8] = {10.5, 9.0, 10.0, 8.5, 7.5, 7.5, 7.0, 6.5};
+constexpr double kLowerCrownMm[8] = {9.0, 9.5, 11.0, 8.5, 8.0, 7.5, 7.0, 6.5};
+
+enum class Side { kAny, kBuccal, kLingual };
+
+// A cusp's region: u_rel within [u_lo, u_hi], on `side` of the middle across.
+struct CuspSlot {
+  LandmarkType type;
+  double u_lo, u_hi;
+  Side side;
+};
+
+constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
+
+std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
+  const bool upper = jaw == io::Jaw::kUpper;
+  if (position == 3)
+    return {{LandmarkType::kCuspTip, -kCanineTipShare, kCanineTipShare, Side::kAny}};
+  if (position == 4 || (position == 5 && upper)) {
+    return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
+            {LandmarkType::kLingualCusp, -0.5, 0.5, Side::kLingual}};
+  }
+  if (position == 5) {  // lower second premolar: one buccal, two lingual cusps
+    return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
+            {LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
+            {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
+  }
+  std::vector<CuspSlot> slots = {{LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
+                                 {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
+  if (!upper && position == 6) {  // lower first molar: three buccal cusps
+    slots.push_back({LandmarkType::kMbCusp, kThird, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kMiddleBuccalCusp, -kThird, kThird, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, -kThird, Side::kBuccal});
+  } else {
+    slots.push_back({LandmarkType::kMbCusp, 0.0, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, 0.0, Side::kBuccal});
+  }
+  return slots;
+}
+
+// The crown's middle and size in tooth coordinates.
+struct CrownBox {
+  double u_mid = 0.0, length = 1.0, v_mid = 0.0, width = 1.0, top = 0.0;
+};
+
+CrownBox Box(const ToothView& view) {
+  CrownBox box;
+  std::vector<double> v;
+  box.top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!view.top.Filled(c)) continue;
+    v.push_back(view.top_uvw[static_cast<std::size_t>(c)].y());
+    box.top = std::max(box.top, view.top_uvw[static_cast<std::size_t>(c)].z());
+  }
+  box.u_mid = 0.5 * (view.u_mesial + view.u_distal);
+  box.length = std::max(view.u_mesial - view.u_distal, 1e-6);
+  box.v_mid = 0.5 * (Quantile(v, 0.05) + Quantile(v, 0.95));
+  box.width = std::max(Quantile(v, 0.95) - Quantile(v, 0.05), 1e-6);
+  return box;
+}
+
+bool OnSide(Side side, double v, const CrownBox& box) {
+  return side == Side::kAny || (side == Side::kBuccal ? v > box.v_mid : v < box.v_mid);
+}
+
+ArchLandmark Make(const ToothView& view, LandmarkType type, const Eigen::Vector3d& p_J,
+                  double confidence, const char* method) {
+  ArchLandmark l;
+  l.landmark.jaw = view.jaw;
+  l.landmark.tooth_fdi = view.fdi;
+  l.landmark.type = type;
+  l.landmark.p = p_J;
+  l.confidence = std::clamp(confidence, 0.0, 1.0);
+  l.method = method;
+  return l;
+}
+
+// Cusp tips: in each slot's region the highest peak, more sure when it is the region's top.
+void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const std::vector<int> peaks = HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm);
+  for (const CuspSlot& slot : CuspSlots(view.jaw, io::ToothPosition(view.fdi))) {
+    int best = -1;
+    double region_top = -std::numeric_limits<double>::infinity();
+    const auto inside = [&](int c) {
+      const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+      const double u = (x.x() - box.u_mid) / box.length;
+      return u >= slot.u_lo && u <= slot.u_hi && OnSide(slot.side, x.y(), box);
+    };
+    for (const int c : peaks) {
+      if (inside(c) && (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                                        view.top.height[static_cast<std::size_t>(best)])) {
+        best = c;
+      }
+    }
+    if (best < 0) continue;
+    for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+      if (view.top.Filled(c) && inside(c))
+        region_top = std::max(region_top, view.top.height[static_cast<std::size_t>(c)]);
+    }
+    const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
+    out->push_back(Make(view, slot.type, view.top.Point_J(best), is_top ? 0.9 : 0.6,
+                        "highest local maximum of the occlusal surface in the cusp's region"));
+  }
+}
+
+// The incisal edge's middle: the highest cell of the crown's middle slice.
+void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
+  int best = -1;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!view.top.Filled(c) ||
+        std::abs(view.top_uvw[static_cast<std::size_t>(c)].x() - box.u_mid) > half)
+      continue;
+    if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                        view.top.height[static_cast<std::size_t>(best)])
+      best = c;
+  }
+  if (best >= 0) {
+    out->push_back(Make(view, LandmarkType::kIncisalEdge, view.top.Point_J(best), 0.8,
+                        "highest point of the crown's middle slice"));
+  }
+}
+
+// The central fossa: the lowest cell of the crown's middle.
+void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  int best = -1;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!view.top.Filled(c)) continue;
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (std::abs(x.x() - box.u_mid) > kFossaShare * box.length ||
+        std::abs(x.y() - box.v_mid) > kFossaShare * box.width)
+      continue;
+    if (best < 0 || view.top.height[static_cast<std::size_t>(c)] <
+                        view.top.height[static_cast<std::size_t>(best)])
+      best = c;
+  }
+  if (best >= 0) {
+    out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(best), 0.6,
+                        "lowest point of the occlusal surface's middle"));
+  }
+}
+
+// Contact points: a whole crown's most mesial / distal surface point near its top; on a scan,
+// the highest point at the boundary with the neighbour (the bottom of the occlusal embrasure).
+void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  for (const bool mesial : {true, false}) {
+    const double sign = mesial ? 1.0 : -1.0;
+    const double end = mesial ? view.u_mesial : view.u_distal;
+    const LandmarkType type = mesial ? LandmarkType::kMesial : LandmarkType::kDistal;
+    const double across = kContactAcrossShare * box.width;
+    if (view.whole_crown) {
+      int best = -1;
+      for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+        const Eigen::Vector3d& x = view.surface_uvw[i];
+        if (x.z() < box.top - kContactDepthMm || std::abs(x.y() - box.v_mid) > across) continue;
+        if (best < 0 || sign * x.x() > sign * view.surface_uvw[static_cast<std::size_t>(best)].x())
+          best = static_cast<int>(i);
+      }
+      if (best >= 0) {
+        out->push_back(Make(view, type, view.surface_J[static_cast<std::size_t>(best)], 0.8,
+                            "most mesial / distal point of the crown near its top"));
+      }
+      continue;
+    }
+    int best = -1;
+    for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+      if (!view.top.Filled(c)) continue;
+      const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+      if (sign * (end - x.x()) > kContactBandMm || std::abs(x.y() - box.v_mid) > across) continue;
+      if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                          view.top.height[static_cast<std::size_t>(best)])
+        best = c;
+    }
+    if (best >= 0) {
+      out->push_back(Make(view, type, view.top.Point_J(best), 0.6,
+                          "highest point at the boundary with the neighbouring crown"));
+    }
+  }
+}
+
+// Facial / lingual: the outermost surface point of the middle slice on each side at half the
+// clinical crown's height below the top.
+void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const double target = box.top - 0.5 * kClinicalCrownShare *
+                                      TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
+  for (const bool facial : {true, false}) {
+    const double sign = facial ? 1.0 : -1.0;
+    int best = -1;
+    for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+      const Eigen::Vector3d& x = view.surface_uvw[i];
+      if (std::abs(x.x() - box.u_mid) > kSliceMm || std::abs(x.z() - target) > kFacialHeightTolMm ||
+          sign * (x.y() - box.v_mid) <= 0.0)
+        continue;
+      if (best < 0 || sign * x.y() > sign * view.surface_uvw[static_cast<std::size_t>(best)].y())
+        best = static_cast<int>(i);
+    }
+    if (best >= 0) {
+      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual,
+                          view.surface_J[static_cast<std::size_t>(best)], 0.5,
+                          "outer surface of the middle slice, half the clinical crown down"));
+    }
+  }
+}
+
+}  // namespace
+
+double TypicalCrownHeightMm(io::Jaw jaw, int position) {
+  const int i = std::clamp(position, 1, 8) - 1;
+  return jaw == io::Jaw::kUpper ? kUpperCrownMm[i] : kLowerCrownMm[i];
+}
+
+std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double tooth_confidence) {
+  std::vector<ArchLandmark> out;
+  if (view.top.nx == 0) return out;
+  const CrownBox box = Box(view);
+  const int position = io::ToothPosition(view.fdi);
+  if (position <= 2) {
+    AddIncisalEdge(view, box, &out);
+  } else {
+    AddCusps(view, box, &out);
+  }
+  if (position >= 4) AddCentralFossa(view, box, &out);
+  AddContacts(view, box, &out);
+  AddSurfacePoints(view, box, &out);
+  for (ArchLandmark& l : out) l.confidence *= tooth_confidence;
+  return out;
+}
+
+}  // namespace occlude::analysis
