@@ -29,6 +29,7 @@ constexpr double kMidlineSearchMm = 6.0;  // the midline lies this close to the 
 constexpr double kMidlineSigmaMm = 2.0;   // ... each sigma away costing squared
 constexpr double kMinScale = 0.85, kMaxScale = 1.2, kScaleStep = 0.025;
 constexpr int kMinTeethPerSide = 3, kMaxTeethPerSide = 8;
+constexpr double kEndShare = 0.25;  // a crown ends where its weight falls below this share
 constexpr double kRefineMm = 0.75;  // boundaries then move to the profile's minimum this close
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -170,6 +171,22 @@ double RefineBoundary(const std::vector<double>& profile, double step, double s)
   return step * static_cast<double>(best);
 }
 
+// The outer boundary of a side's last tooth is where its crown ends, not where the programme
+// put it (often the end of the scan): moves `*outer` towards `inner` while the crown weight
+// stays below kEndShare of the tooth's median.
+void TrimEnd(const CrownProfile& profile, double step, double* outer, double inner) {
+  const auto index = [&](double s) {
+    return std::clamp(std::lround(s / step), 0L, static_cast<long>(profile.weight.size()) - 1);
+  };
+  const long a = index(*outer), b = index(inner), dir = b > a ? 1 : -1;
+  std::vector<double> w;
+  for (long k = a; k != b; k += dir) w.push_back(profile.weight[static_cast<std::size_t>(k)]);
+  const double limit = kEndShare * Quantile(w, 0.5);
+  long k = a;
+  while (k != b && profile.weight[static_cast<std::size_t>(k)] < limit) k += dir;
+  *outer = step * static_cast<double>(k);
+}
+
 }  // namespace
 
 double TypicalWidthMm(io::Jaw jaw, int position) {
@@ -236,6 +253,10 @@ std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve
   for (int p = 1; p <= static_cast<int>(best_left.bounds.size()); ++p) {
     add(p, p == 1 ? best_m : best_left.bounds[static_cast<std::size_t>(p - 2)],
         best_left.bounds[static_cast<std::size_t>(p - 1)], false);
+  }
+  if (!teeth.empty()) {
+    TrimEnd(profile, curve.step, &teeth.front().s_lo, teeth.front().s_hi);
+    TrimEnd(profile, curve.step, &teeth.back().s_hi, teeth.back().s_lo);
   }
   return teeth;
 }
