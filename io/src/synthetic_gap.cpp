@@ -1,15 +1,17 @@
 // The gap function of the synthetic bite and its contacts. The upper occlusal surface is the
 // lower one lifted by a gap G >= 0 at every vertex of the shared grid:
 //
-//   H_U = H_L + G,   G = max(C, D, H_U0 - H_L)   (G = 0 at the contact vertices)
+//   H_U = H_L + G,   G = max(C, D, E, H_U0 - H_L)   (G = 0 at the contact vertices)
 //
 //   H_U0  the upper crowns as designed. Where they would dip into the lower jaw (or come
-//         closer than C or D) the upper surface takes the lower's shape lifted by C or D,
-//         like a bite record: upper cusps seat in the lower fossae.
+//         closer than C, D or E) the upper surface takes the lower's shape lifted by C, D or
+//         E, like a bite record: upper cusps seat in the lower fossae.
 //   C     contact proximity: exactly 0 within kPatchRadius of a contact vertex, rising to
 //         kFarGap within kGapRamp beyond, so the jaws touch only at the contacts.
 //   D     clearance (synthetic_clearance.cpp): enough vertical gap that pulling the jaws
 //         kPullApart apart opens at least kKeptApart everywhere.
+//   E     the Class II alternative's record (synthetic_alternative.cpp): where the upper,
+//         moved a premolar width mesially, would dip into the lower. Contacts lie where E = 0.
 //
 // Contacts: on the four flanks of each cusp, grid vertices on inclines (so that the bite locks
 // against slides and rotations) near where the design meets the lower jaw, where both pulls
@@ -83,10 +85,12 @@ double LowerSlope(const OcclusalGrid& grid, const OcclusalFields& fields, int v)
 /// opens with them (cusp tips and fossa bottoms are flat and would let the jaws slide).
 std::vector<int> SelectContacts(const DentitionLayout& layout, const OcclusalGrid& grid,
                                 const OcclusalFields& fields,
-                                const std::vector<Eigen::Vector3i>& triangles) {
+                                const std::vector<Eigen::Vector3i>& triangles,
+                                const std::vector<double>& lift) {
   const auto eligible = [&](int v) {
     const auto k = static_cast<std::size_t>(v);
     if (fields.lower_tooth[k] < 0 || fields.upper_tooth[k] < 0) return false;
+    if (lift[k] > 0.0) return false;
     if (fields.upper_design_y[k] > fields.lower_y[k] + kDesignReach) return false;
     const double slope = LowerSlope(grid, fields, v);
     if (slope < kMinFlankSlope || slope > kMaxFlankSlope) return false;
@@ -114,33 +118,16 @@ std::vector<int> SelectContacts(const DentitionLayout& layout, const OcclusalGri
   return contacts;
 }
 
-/// C per vertex: 0 within kPatchRadius of a contact vertex, rising as z (2 - z) with
-/// z = (distance - kPatchRadius) / kGapRamp to kFarGap.
-std::vector<double> ContactProximity(const OcclusalGrid& grid, const std::vector<int>& contacts) {
-  std::vector<double> gap(grid.num_vertices(), kFarGap);
-  for (const int c : contacts) {
-    const auto k = static_cast<std::size_t>(c);
-    const int i = c / (grid.nt + 1);
-    const int j = c % (grid.nt + 1);
-    ForGridVerticesNear(grid, grid.xz[k], grid.S(i), grid.T(j), kPatchRadius + kGapRamp,
-                        [&](int v, double d) {
-                          const double z = std::clamp((d - kPatchRadius) / kGapRamp, 0.0, 1.0);
-                          double& g = gap[static_cast<std::size_t>(v)];
-                          g = std::min(g, kFarGap * z * (2.0 - z));
-                        });
-  }
-  return gap;
-}
-
-/// H_U = H_L + max(C, D, H_U0 - H_L), and exactly H_L at the contact vertices (where C = 0 and
-/// H_U0 <= H_L; the clearance there is checked exactly instead).
+/// H_U = H_L + max(C, D, E, H_U0 - H_L), and exactly H_L at the contact vertices (where C = 0,
+/// E = 0 and H_U0 <= H_L; the clearance there is checked exactly instead).
 std::vector<double> UpperHeights(const OcclusalFields& fields, const std::vector<double>& proximity,
                                  const std::vector<double>& clearance,
+                                 const std::vector<double>& lift,
                                  const std::vector<int>& contacts) {
   std::vector<double> upper_y(fields.lower_y.size());
   for (std::size_t v = 0; v < upper_y.size(); ++v) {
     const double design_gap = fields.upper_design_y[v] - fields.lower_y[v];
-    upper_y[v] = fields.lower_y[v] + std::max({proximity[v], clearance[v], design_gap});
+    upper_y[v] = fields.lower_y[v] + std::max({proximity[v], clearance[v], lift[v], design_gap});
   }
   for (const int c : contacts) {
     upper_y[static_cast<std::size_t>(c)] = fields.lower_y[static_cast<std::size_t>(c)];
@@ -184,15 +171,19 @@ std::vector<int> TightContacts(const OcclusalGrid& grid, const OcclusalFields& f
   return tight;
 }
 
+/// H_U0 - H_L per vertex.
+std::vector<double> DesignGap(const OcclusalFields& fields) {
+  std::vector<double> gap(fields.lower_y.size());
+  for (std::size_t v = 0; v < gap.size(); ++v)
+    gap[v] = fields.upper_design_y[v] - fields.lower_y[v];
+  return gap;
+}
+
 /// D per vertex: the larger of the slope and rise clearances.
 std::vector<double> Clearance(const OcclusalGrid& grid, const OcclusalFields& fields,
                               const std::vector<Eigen::Vector3i>& triangles) {
-  std::vector<double> design_gap(grid.num_vertices());
-  for (std::size_t v = 0; v < design_gap.size(); ++v) {
-    design_gap[v] = fields.upper_design_y[v] - fields.lower_y[v];
-  }
   std::vector<double> clearance = SlopeClearance(grid, fields.lower_y, triangles);
-  const std::vector<double> rise = RiseClearance(grid, fields.lower_y, design_gap);
+  const std::vector<double> rise = RiseClearance(grid, fields.lower_y, DesignGap(fields));
   for (std::size_t v = 0; v < clearance.size(); ++v) {
     clearance[v] = std::max(clearance[v], rise[v]);
   }
@@ -204,12 +195,14 @@ std::vector<double> Clearance(const OcclusalGrid& grid, const OcclusalFields& fi
 GapResult MakeUpperSurface(const DentitionLayout& layout, const OcclusalGrid& grid,
                            const OcclusalFields& fields,
                            const std::vector<Eigen::Vector3i>& triangles) {
+  const std::vector<double> lift = AlternativeLift(grid, fields.lower_y, triangles);
   const std::vector<double> clearance = Clearance(grid, fields, triangles);
   GapResult result;
-  result.contact_vertex = SelectContacts(layout, grid, fields, triangles);
+  result.contact_vertex = SelectContacts(layout, grid, fields, triangles, lift);
+  std::vector<double> proximity;
   for (;;) {  // each round drops at least one contact, so this ends
-    const std::vector<double> proximity = ContactProximity(grid, result.contact_vertex);
-    result.upper_y = UpperHeights(fields, proximity, clearance, result.contact_vertex);
+    proximity = ContactProximity(grid, result.contact_vertex);
+    result.upper_y = UpperHeights(fields, proximity, clearance, lift, result.contact_vertex);
     const std::vector<int> tight =
         TightContacts(grid, fields, result.upper_y, triangles, result.contact_vertex);
     if (tight.empty()) break;
@@ -218,7 +211,33 @@ GapResult MakeUpperSurface(const DentitionLayout& layout, const OcclusalGrid& gr
                         tight.end(), std::back_inserter(kept));
     result.contact_vertex = std::move(kept);
   }
+  // The alternative's contact thinned to spots; the lift only grows where it was > 0, so the
+  // contacts, the no-penetration and the pull-apart clearance of the bite are unchanged.
+  std::vector<double> others = DesignGap(fields);
+  for (std::size_t v = 0; v < others.size(); ++v) {
+    others[v] = std::max({others[v], proximity[v], clearance[v]});
+  }
+  const std::vector<double> thinned = ThinAlternativeLift(grid, lift, others);
+  result.upper_y = UpperHeights(fields, proximity, clearance, thinned, result.contact_vertex);
   return result;
+}
+
+/// C per vertex: 0 within kPatchRadius of a contact vertex, rising as z (2 - z) with
+/// z = (distance - kPatchRadius) / kGapRamp to kFarGap.
+std::vector<double> ContactProximity(const OcclusalGrid& grid, const std::vector<int>& contacts) {
+  std::vector<double> gap(grid.num_vertices(), kFarGap);
+  for (const int c : contacts) {
+    const auto k = static_cast<std::size_t>(c);
+    const int i = c / (grid.nt + 1);
+    const int j = c % (grid.nt + 1);
+    ForGridVerticesNear(grid, grid.xz[k], grid.S(i), grid.T(j), kPatchRadius + kGapRamp,
+                        [&](int v, double d) {
+                          const double z = std::clamp((d - kPatchRadius) / kGapRamp, 0.0, 1.0);
+                          double& g = gap[static_cast<std::size_t>(v)];
+                          g = std::min(g, kFarGap * z * (2.0 - z));
+                        });
+  }
+  return gap;
 }
 
 }  // namespace occlude::io::synthetic

@@ -51,7 +51,7 @@ OcclusalGrid MakeOcclusalGrid(const DentitionLayout& layout, std::size_t triangl
   grid.ds = length_s / grid.ns;
   grid.t0 = layout.t_min;
   grid.dt = length_t / grid.nt;
-  grid.max_curvature = ArchCurvature(layout.arch, 0.0);
+  grid.max_curvature = MaxArchCurvature(layout.arch);
   grid.xz.resize(static_cast<std::size_t>((grid.ns + 1) * (grid.nt + 1)));
   for (int i = 0; i <= grid.ns; ++i) {
     const Eigen::Vector2d c = ArchPoint(layout.arch, grid.S(i));

@@ -65,6 +65,22 @@ std::vector<SyntheticContact> Contacts(const synthetic::DentitionLayout& layout,
   return contacts;
 }
 
+/// The landmarks of both jaws (upper ones moved into U) and the relationships they make.
+void AddLandmarks(const synthetic::DentitionLayout& layout, const synthetic::OcclusalGrid& grid,
+                  const std::vector<Eigen::Vector3i>& triangles,
+                  const synthetic::OcclusalFields& fields, const synthetic::GapResult& gap,
+                  SyntheticJawPair* pair) {
+  const std::vector<Landmark> lower_L = synthetic::JawLandmarks(
+      layout.lower, false, layout.arch, grid, triangles, fields.lower_y, fields.lower_tooth);
+  std::vector<Landmark> upper = synthetic::JawLandmarks(layout.upper, true, layout.arch, grid,
+                                                        triangles, gap.upper_y, fields.upper_tooth);
+  pair->relationships = synthetic::DesignedRelationships(lower_L, upper);
+  const Eigen::Isometry3d X_UL = pair->X_LU.inverse();
+  for (Landmark& l : upper) l.p = X_UL * l.p;
+  pair->landmarks = std::move(upper);
+  pair->landmarks.insert(pair->landmarks.end(), lower_L.begin(), lower_L.end());
+}
+
 }  // namespace
 
 SyntheticJawPair MakeSyntheticJawPair(const SyntheticJawOptions& options) {
@@ -94,6 +110,8 @@ SyntheticJawPair MakeSyntheticJawPair(const SyntheticJawOptions& options) {
   pair.upper_U = upper_L.Transformed(pair.X_LU.inverse());
   pair.contacts = Contacts(layout, grid, fields, gap);
   pair.occlusal_axis_L = Eigen::Vector3d::UnitY();
+  AddLandmarks(layout, grid, triangles, fields, gap, &pair);
+  pair.class2_shift_L = Eigen::Vector3d(0.0, 0.0, synthetic::kClass2ShiftMm);
   return pair;
 }
 

@@ -1,9 +1,11 @@
 // Internal pieces of the synthetic jaw generator (see occlude/io/synthetic_jaws.h for the
 // contract). Data flow: tooth layout (synthetic_layout.cpp) + arch curve (synthetic_arch.cpp)
 // -> crown height functions (synthetic_crowns.cpp) sampled on one (s, t) grid shared by both
-// jaws (synthetic_grid.cpp) -> gap function and contacts (synthetic_gap.cpp) -> closed slab
-// meshes (synthetic_slab.cpp) -> invariant checks (synthetic_verify.cpp), all driven by
-// MakeSyntheticJawPair (synthetic_jaws.cpp).
+// jaws (synthetic_grid.cpp) -> gap function and contacts (synthetic_gap.cpp, with the Class II
+// alternative's record from synthetic_alternative.cpp) -> closed slab meshes
+// (synthetic_slab.cpp) -> invariant checks (synthetic_verify.cpp) -> landmarks on the final
+// surfaces and the relationships they make (synthetic_landmarks.cpp,
+// synthetic_relationships.cpp), all driven by MakeSyntheticJawPair (synthetic_jaws.cpp).
 //
 // Parameter domain: s is arc length along the arch curve (mm, 0 on the midline, s > 0 towards
 // the patient's left = +x), t the signed distance across it (mm, t > 0 buccal/labial). A point
@@ -18,28 +20,38 @@
 #include <string>
 #include <vector>
 
+#include "occlude/io/dental.h"
+#include "occlude/io/synthetic_jaws.h"
 #include "occlude/io/triangle_mesh.h"
 
 namespace occlude::io::synthetic {
 
 // ---------------------------------------------------------------- arch (synthetic_arch.cpp)
 
-/// The dental arch curve C(s) in the xz-plane of L. Its tangent makes the angle
-/// theta(s) = theta_max * tanh(s / s_scale) with +x, turning towards -z (posterior), so the arch
-/// is a smooth horseshoe: round at the incisors, nearly straight and slightly diverging at the
-/// molars.
+/// The dental arch curve C(s) in the xz-plane of L. Its tangent makes the angle theta(s) with +x,
+/// turning towards -z (posterior): theta = pi/2 F(|s| / bend_length) sign(s) over the bend and
+/// exactly pi/2 beyond, so the posterior segments are straight and parallel to the anterior
+/// axis z (a shift of the upper along z slides them along themselves: the Class II
+/// alternative, synthetic_alternative.cpp). F blends a uniform turn (round incisor front, share
+/// round_share) with one peaking at mid-bend, where the canines stand (the arch's corners).
 struct ArchCurve {
-  double theta_max = 1.42;  ///< rad, asymptotic tangent angle of the posterior segments
-  double s_scale = 21.0;    ///< mm, arc length over which the arch bends
-  double z_offset = 0.0;    ///< mm, added to z so that the dentition is centred on z = 0
+  double bend_length = 36.0;  ///< mm of arc from the midline to the straight posterior segments
+  double round_share = 0.25;  ///< share of the turn spread over the bend evenly
+  double z_offset = 0.0;      ///< mm, added to z so that the dentition is centred on z = 0
 };
 
+/// Tangent angle theta(s), rad.
+double ArchAngle(const ArchCurve& arch, double s);
 /// C(s) as (x, z) in L, mm.
 Eigen::Vector2d ArchPoint(const ArchCurve& arch, double s);
+/// Unit tangent T(s) as (x, z) in L, towards growing s.
+Eigen::Vector2d ArchTangent(const ArchCurve& arch, double s);
 /// Outward (buccal/labial) unit normal N(s) as (x, z) in L.
 Eigen::Vector2d ArchNormal(const ArchCurve& arch, double s);
-/// Curvature of C at s, 1/mm (positive: N points away from the centre of curvature).
+/// Curvature of C at s, 1/mm (>= 0: N points away from the centre of curvature).
 double ArchCurvature(const ArchCurve& arch, double s);
+/// The largest curvature of the arch, 1/mm.
+double MaxArchCurvature(const ArchCurve& arch);
 
 // ------------------------------------------------------------ layout (synthetic_layout.cpp)
 
@@ -57,9 +69,10 @@ enum ToothClass : int {
 /// One cusp: a Gaussian bump amplitude exp(-d^2 / (2 sigma^2)) of the occlusal relief, d the
 /// distance from its tip (s, t) in the parameter domain.
 struct Cusp {
-  double s = 0.0, t = 0.0;  ///< tip position in the parameter domain, mm
-  double amplitude = 0.0;   ///< mm
-  double sigma = 1.0;       ///< mm
+  double s = 0.0, t = 0.0;                     ///< tip position in the parameter domain, mm
+  double amplitude = 0.0;                      ///< mm
+  double sigma = 1.0;                          ///< mm
+  LandmarkType type = LandmarkType::kCuspTip;  ///< which cusp of clinical.md it is
 };
 
 /// One crown. Its height above (lower) or below (upper) the jaw's gingiva level is a product of
@@ -68,6 +81,9 @@ struct Cusp {
 struct Tooth {
   int number = 0;  ///< Universal number
   ToothClass tooth_class = kCentralIncisor;
+  int side = 1;               ///< +1 the patient's left (s > 0), -1 the right
+  double s_mesial = 0.0;      ///< mm, where the crown meets its mesial neighbour (contact point)
+  double s_distal = 0.0;      ///< mm, where it meets its distal neighbour (or would)
   double s_center = 0.0;      ///< mm
   double half_length = 0.0;   ///< mm along s, including the proximal overlap with neighbours
   double t_center = 0.0;      ///< mm
@@ -204,6 +220,25 @@ double DistanceToSurfaceNear(const OcclusalGrid& grid, const std::vector<double>
                              const std::vector<Eigen::Vector3i>& triangles, int v,
                              const Eigen::Vector3d& p, double radius);
 
+// -------------------------------------------------- alternative (synthetic_alternative.cpp)
+
+/// The full-cusp Class II alternative the bite is built to have: the upper jaw moved by this
+/// along +z in L (anterior: upper mesial by about a premolar width), mm.
+inline constexpr double kClass2ShiftMm = 7.0;
+
+/// Per grid vertex, the lift E >= 0 of the upper surface over the lower one (H_U >= H_L + E)
+/// that keeps the upper, moved by kClass2ShiftMm along +z, above the lower occlusal surface at
+/// the vertices of both (see synthetic_alternative.cpp). Zero where nothing is needed.
+std::vector<double> AlternativeLift(const OcclusalGrid& grid, const std::vector<double>& lower_y,
+                                    const std::vector<Eigen::Vector3i>& triangles);
+/// The lift thinned so that the alternative touches at spots rather than wherever the lift
+/// binds: spots kAlternativeSpotSpacingMm apart among the vertices where `lift` exceeds the
+/// upper's other gaps `others` (there the moved upper rests on the lower), and beyond them the
+/// lift raised by the contact proximity C of the spots (capped at 4 lift, so it stays
+/// continuous and 0 where `lift` is). Returns E >= lift, equal to it where lift == 0.
+std::vector<double> ThinAlternativeLift(const OcclusalGrid& grid, const std::vector<double>& lift,
+                                        const std::vector<double>& others);
+
 // ------------------------------------------------------------------ gap (synthetic_gap.cpp)
 
 /// The upper occlusal surface H_U = H_L + G and the contacts.
@@ -211,9 +246,30 @@ struct GapResult {
   std::vector<double> upper_y;      ///< H_U per grid vertex, L frame, mm
   std::vector<int> contact_vertex;  ///< grid vertices where G == 0 exactly (sorted)
 };
+/// C per vertex for a set of contact vertices: 0 within kPatchRadius of one, rising as
+/// z (2 - z) with z = (distance - kPatchRadius) / kGapRamp to kFarGap (synthetic_gap.cpp), mm.
+std::vector<double> ContactProximity(const OcclusalGrid& grid, const std::vector<int>& contacts);
+
 GapResult MakeUpperSurface(const DentitionLayout& layout, const OcclusalGrid& grid,
                            const OcclusalFields& fields,
                            const std::vector<Eigen::Vector3i>& triangles);
+
+// -------------------------------------------------------- landmarks (synthetic_landmarks.cpp)
+
+/// The clinical landmarks of every tooth of `jaw` (its occlusal heights `occlusal_y` over the
+/// grid and crown index per vertex `vertex_tooth`), in L, on the mesh; sorted by FDI number,
+/// each tooth's in a fixed type order.
+std::vector<Landmark> JawLandmarks(const JawLayout& jaw, bool upper, const ArchCurve& arch,
+                                   const OcclusalGrid& grid,
+                                   const std::vector<Eigen::Vector3i>& triangles,
+                                   const std::vector<double>& occlusal_y,
+                                   const std::vector<int>& vertex_tooth);
+
+// ------------------------------------------------ relationships (synthetic_relationships.cpp)
+
+/// clinical.md's relationships from the landmarks of both jaws in L at the bite.
+SyntheticRelationships DesignedRelationships(const std::vector<Landmark>& lower_L,
+                                             const std::vector<Landmark>& upper_L);
 
 // ---------------------------------------------------------------- slab (synthetic_slab.cpp)
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "occlude/collision/closest_point.h"
+#include "occlude/io/dental.h"
 
 namespace occlude::io {
 namespace {
@@ -419,6 +420,239 @@ TEST_P(SyntheticPairTest, ArchDimensionsArePlausible) {
   EXPECT_LT(teeth.sizes().z(), 50.0);
   EXPECT_DOUBLE_EQ(pair_.occlusal_axis_L.norm(), 1.0);
   EXPECT_GT(UpperInL(pair_, 0.0).Bounds().center().y(), pair_.lower_L.Bounds().center().y());
+}
+
+// ---------------------------------------------------------------------------- landmarks
+
+/// A landmark in L at the bite (upper ones moved by X_LU).
+Eigen::Vector3d AtBite(const SyntheticJawPair& pair, const Landmark& l) {
+  return l.jaw == Jaw::kUpper ? Eigen::Vector3d(pair.X_LU * l.p) : l.p;
+}
+
+/// The types clinical.md gives a tooth at this FDI position.
+std::set<LandmarkType> ExpectedTypes(Jaw jaw, int fdi) {
+  using LT = LandmarkType;
+  std::set<LT> types = {LT::kMesial, LT::kDistal, LT::kFacial, LT::kLingual};
+  const int position = ToothPosition(fdi);
+  if (position <= 2) types.insert(LT::kIncisalEdge);
+  if (position == 3) types.insert(LT::kCuspTip);
+  if (position == 4 || position == 5) {
+    types.insert({LT::kBuccalCusp, LT::kLingualCusp, LT::kCentralFossa});
+  }
+  if (position >= 6) {
+    types.insert({LT::kMbCusp, LT::kDbCusp, LT::kMlCusp, LT::kDlCusp, LT::kCentralFossa});
+  }
+  if (position == 6 && jaw == Jaw::kLower) types.insert(LT::kMiddleBuccalCusp);
+  return types;
+}
+
+bool IsOcclusalFeature(LandmarkType type) {
+  return type != LandmarkType::kMesial && type != LandmarkType::kDistal &&
+         type != LandmarkType::kFacial && type != LandmarkType::kLingual;
+}
+
+TEST_P(SyntheticPairTest, EveryToothCarriesTheLandmarksOfItsType) {
+  std::map<std::pair<Jaw, int>, std::multiset<LandmarkType>> found;
+  for (const Landmark& l : pair_.landmarks) {
+    ASSERT_TRUE(IsValidFdi(l.tooth_fdi)) << l.tooth_fdi;
+    EXPECT_EQ(JawOfFdi(l.tooth_fdi), l.jaw) << l.tooth_fdi;
+    EXPECT_TRUE(l.p.allFinite());
+    found[{l.jaw, l.tooth_fdi}].insert(l.type);
+  }
+  EXPECT_EQ(found.size(), 28u);  // 7 teeth per quadrant, no third molars
+  for (const int quadrant : {1, 2, 3, 4}) {
+    for (int position = 1; position <= 7; ++position) {
+      const int fdi = 10 * quadrant + position;
+      const Jaw jaw = JawOfFdi(fdi);
+      const std::set<LandmarkType> expected = ExpectedTypes(jaw, fdi);
+      const std::multiset<LandmarkType>& got = found[{jaw, fdi}];
+      EXPECT_EQ(got.size(), expected.size()) << "tooth " << fdi << ": a type twice or missing";
+      EXPECT_EQ(std::set<LandmarkType>(got.begin(), got.end()), expected) << "tooth " << fdi;
+    }
+  }
+}
+
+TEST_P(SyntheticPairTest, LandmarksLieOnTheFinalSurfacesOfTheirTeeth) {
+  // Upper landmarks are in U, like upper_U; each must be a point of its jaw's mesh, and the
+  // occlusal features (edges, cusps, fossae) on a triangle of their own tooth's part.
+  constexpr double kOnSurface = 1e-9;  // mm: a convex combination of a triangle's corners
+  TriangleBins lower_bins(pair_.lower_L, 1.0);
+  TriangleBins upper_bins(pair_.upper_U, 1.0);
+  for (const Landmark& l : pair_.landmarks) {
+    const bool upper = l.jaw == Jaw::kUpper;
+    const TriangleMesh& mesh = upper ? pair_.upper_U : pair_.lower_L;
+    const MeshDistance d = DistanceToMesh(mesh, upper ? upper_bins : lower_bins, l.p, 1.0);
+    ASSERT_TRUE(d.found) << l.tooth_fdi << " " << ToString(l.type);
+    EXPECT_LE(d.distance, kOnSurface) << l.tooth_fdi << " " << ToString(l.type);
+    if (!IsOcclusalFeature(l.type)) continue;
+    const int part_tooth = mesh.parts[static_cast<std::size_t>(
+                                          mesh.triangle_part[static_cast<std::size_t>(d.triangle)])]
+                               .tooth_number;
+    EXPECT_EQ(part_tooth, UniversalFromFdi(l.tooth_fdi)) << l.tooth_fdi << " " << ToString(l.type);
+  }
+}
+
+/// The landmark of a tooth and type (ADD_FAILURE and the origin when missing).
+Eigen::Vector3d Find(const SyntheticJawPair& pair, int fdi, LandmarkType type) {
+  for (const Landmark& l : pair.landmarks) {
+    if (l.tooth_fdi == fdi && l.type == type) return AtBite(pair, l);
+  }
+  ADD_FAILURE() << "no " << ToString(type) << " on tooth " << fdi;
+  return Eigen::Vector3d::Zero();
+}
+
+TEST_P(SyntheticPairTest, NeighboursShareTheirContactPoints) {
+  // Along each quadrant the distal contact of a tooth is the mesial contact of the next; the
+  // central incisors meet on the midline.
+  for (const int quadrant : {1, 2, 3, 4}) {
+    for (int position = 1; position < 7; ++position) {
+      const int fdi = 10 * quadrant + position;
+      EXPECT_LE(
+          (Find(pair_, fdi, LandmarkType::kDistal) - Find(pair_, fdi + 1, LandmarkType::kMesial))
+              .norm(),
+          1e-9)
+          << fdi;
+    }
+  }
+  EXPECT_LE(
+      (Find(pair_, 11, LandmarkType::kMesial) - Find(pair_, 21, LandmarkType::kMesial)).norm(),
+      1e-9);
+  EXPECT_LE(
+      (Find(pair_, 41, LandmarkType::kMesial) - Find(pair_, 31, LandmarkType::kMesial)).norm(),
+      1e-9);
+}
+
+/// Largest rise (towards the other jaw) of `mesh`'s occlusal vertices within `radius` of p in xz
+/// above p itself, mm: <= 0 when p is the local extreme.
+double RiseBeside(const TriangleMesh& mesh, const Eigen::Vector3d& p, double radius, bool upper) {
+  double rise = -1e9;
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    if (std::hypot(v.x() - p.x(), v.z() - p.z()) > radius) continue;
+    rise = std::max(rise, upper ? p.y() - v.y() : v.y() - p.y());
+  }
+  return rise;
+}
+
+TEST_P(SyntheticPairTest, CuspTipsAndIncisalEdgesAreTheOcclusalExtremesAroundThem) {
+  // What a detector finds (the extreme along the occlusal axis near a cusp) is the landmark:
+  // no vertex within kTipRadius stands out further towards the other jaw by more than
+  // kTipTolerance (cusp tips are worn flat, so a plateau counts).
+  constexpr double kTipRadius = 1.0;      // mm, in the occlusal plane
+  constexpr double kTipTolerance = 0.05;  // mm
+  const TriangleMesh upper_L = UpperInL(pair_, 0.0);
+  using LT = LandmarkType;
+  for (const Landmark& l : pair_.landmarks) {
+    if (l.type == LT::kCentralFossa || !IsOcclusalFeature(l.type)) continue;
+    const bool upper = l.jaw == Jaw::kUpper;
+    EXPECT_LE(RiseBeside(upper ? upper_L : pair_.lower_L, AtBite(pair_, l), kTipRadius, upper),
+              kTipTolerance)
+        << ToString(l.jaw) << " " << l.tooth_fdi << " " << ToString(l.type);
+  }
+}
+
+/// clinical.md's relationships computed here from the landmarks (independently of the
+/// generator), in L's axes: occlusal +y, anterior +z, lateral +x.
+SyntheticRelationships FromLandmarks(const SyntheticJawPair& pair, const Eigen::Vector3d& shift_L) {
+  using LT = LandmarkType;
+  const auto upper = [&](int fdi, LT type) -> Eigen::Vector3d {
+    return Find(pair, fdi, type) + shift_L;
+  };
+  const auto lower = [&](int fdi, LT type) -> Eigen::Vector3d { return Find(pair, fdi, type); };
+  const auto mesial_direction = [&](int fdi) {
+    Eigen::Vector3d t = lower(fdi, LT::kMesial) - lower(fdi, LT::kDistal);
+    t.y() = 0.0;
+    return t.normalized();
+  };
+  SyntheticRelationships r;
+  r.overjet_mm = 0.5 * (upper(11, LT::kIncisalEdge).z() - lower(41, LT::kIncisalEdge).z() +
+                        upper(21, LT::kIncisalEdge).z() - lower(31, LT::kIncisalEdge).z());
+  r.overbite_mm = 0.5 * (lower(41, LT::kIncisalEdge).y() - upper(11, LT::kIncisalEdge).y() +
+                         lower(31, LT::kIncisalEdge).y() - upper(21, LT::kIncisalEdge).y());
+  r.midline_deviation_mm = 0.5 * (upper(11, LT::kMesial).x() + upper(21, LT::kMesial).x()) -
+                           0.5 * (lower(41, LT::kMesial).x() + lower(31, LT::kMesial).x());
+  const auto molar = [&](int u, int l) {
+    const Eigen::Vector3d groove = 0.5 * (lower(l, LT::kMbCusp) + lower(l, LT::kMiddleBuccalCusp));
+    return (upper(u, LT::kMbCusp) - groove).dot(mesial_direction(l));
+  };
+  const auto canine = [&](int u, int l) {
+    const Eigen::Vector3d embrasure = 0.5 * (lower(l, LT::kDistal) + lower(l + 1, LT::kMesial));
+    return (upper(u, LT::kCuspTip) - embrasure).dot(mesial_direction(l));
+  };
+  r.molar_mm = {molar(16, 46), molar(26, 36)};
+  r.canine_mm = {canine(13, 43), canine(23, 33)};
+  return r;
+}
+
+TEST_P(SyntheticPairTest, DesignedBiteIsANormalClassOneOcclusion) {
+  constexpr double kSameMeasure = 1e-9;  // mm: the same definitions on the same points
+  // Molar and canine offsets: 0 by design; the tips are the meshes' most prominent vertices
+  // there, within about half a grid cell (1 mm at 5,000 triangles, as 1 / sqrt(budget)).
+  const double kClassOne = 0.6 * std::sqrt(5000.0 / static_cast<double>(budget_));
+  constexpr double kMidline = 0.01;  // mm
+  const SyntheticRelationships& r = pair_.relationships;
+  const SyntheticRelationships mine = FromLandmarks(pair_, Eigen::Vector3d::Zero());
+  EXPECT_NEAR(r.overjet_mm, mine.overjet_mm, kSameMeasure);
+  EXPECT_NEAR(r.overbite_mm, mine.overbite_mm, kSameMeasure);
+  EXPECT_NEAR(r.midline_deviation_mm, mine.midline_deviation_mm, kSameMeasure);
+  EXPECT_NEAR(r.molar_mm.right, mine.molar_mm.right, kSameMeasure);
+  EXPECT_NEAR(r.molar_mm.left, mine.molar_mm.left, kSameMeasure);
+  EXPECT_NEAR(r.canine_mm.right, mine.canine_mm.right, kSameMeasure);
+  EXPECT_NEAR(r.canine_mm.left, mine.canine_mm.left, kSameMeasure);
+  // clinical.md's normal ranges: overjet and overbite 1-3 mm, Class I within 1.5 mm.
+  EXPECT_GE(r.overjet_mm, 1.0);
+  EXPECT_LE(r.overjet_mm, 3.0);
+  EXPECT_GE(r.overbite_mm, 1.0);
+  EXPECT_LE(r.overbite_mm, 3.0);
+  EXPECT_LE(std::abs(r.midline_deviation_mm), kMidline);
+  for (const double offset :
+       {r.molar_mm.right, r.molar_mm.left, r.canine_mm.right, r.canine_mm.left}) {
+    EXPECT_LE(std::abs(offset), kClassOne);
+  }
+}
+
+TEST_P(SyntheticPairTest, TheClassTwoShiftMovesTheUpperMesiallyByIt) {
+  // The relationships' signs: the upper moved along +z by the shift is upper mesial on both
+  // sides (Class II) by the shift, with the overjet grown by it and the midline unchanged.
+  const double shift = pair_.class2_shift_L.norm();
+  EXPECT_GE(shift, 3.5);  // clinical.md: half a cusp to a premolar width
+  EXPECT_LE(shift, 7.0);
+  EXPECT_GT(pair_.class2_shift_L.z(), 0.99 * shift);
+  const SyntheticRelationships at = FromLandmarks(pair_, Eigen::Vector3d::Zero());
+  const SyntheticRelationships moved = FromLandmarks(pair_, pair_.class2_shift_L);
+  constexpr double kAlongTheArch = 0.05;  // mm: the posterior segments run along z
+  EXPECT_NEAR(moved.molar_mm.right - at.molar_mm.right, shift, kAlongTheArch);
+  EXPECT_NEAR(moved.molar_mm.left - at.molar_mm.left, shift, kAlongTheArch);
+  EXPECT_GT(moved.canine_mm.right - at.canine_mm.right, 1.5);  // Class II at the canines too
+  EXPECT_GT(moved.canine_mm.left - at.canine_mm.left, 1.5);
+  EXPECT_NEAR(moved.overjet_mm - at.overjet_mm, pair_.class2_shift_L.z(), 1e-9);
+  EXPECT_NEAR(moved.midline_deviation_mm, at.midline_deviation_mm, 1e-9);
+}
+
+TEST_P(SyntheticPairTest, TheClassTwoAlternativeRestsOnTheLowerAndTouchesOnBothSides) {
+  // At the alternative no vertex of one jaw lies deeper than kAlternativeDepth inside the other
+  // (the vertices are checked by construction; between them the surfaces may cross a little),
+
+  constexpr double kAlternativeDepth = 0.05;  // mm: the planner's default penetration limit
+  constexpr double kTouch = 0.1;              // mm: the default contact band
+  const TriangleMesh upper_L =
+      pair_.upper_U.Transformed(Eigen::Translation3d(pair_.class2_shift_L) * pair_.X_LU);
+  EXPECT_LE(MaxPenetration(upper_L, pair_.lower_L), kAlternativeDepth);
+  EXPECT_LE(MaxPenetration(pair_.lower_L, upper_L), kAlternativeDepth);
+  TriangleBins bins(pair_.lower_L, 1.0);
+  double nearest[2] = {kTouch + 1.0, kTouch + 1.0};  // right, left
+  for (std::size_t t = 0; t < upper_L.num_triangles(); ++t) {
+    const int tooth =
+        upper_L.parts[static_cast<std::size_t>(upper_L.triangle_part[t])].tooth_number;
+    if (tooth == 0 || ToothPosition(FdiFromUniversal(tooth)) < 4) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& p = upper_L.corner(t, k);
+      const MeshDistance d = DistanceToMesh(pair_.lower_L, bins, p, 1.0);
+      double& side = nearest[p.x() > 0.0 ? 1 : 0];
+      if (d.found) side = std::min(side, d.distance);
+    }
+  }
+  EXPECT_LE(nearest[0], kTouch) << "right";
+  EXPECT_LE(nearest[1], kTouch) << "left";
 }
 
 INSTANTIATE_TEST_SUITE_P(
