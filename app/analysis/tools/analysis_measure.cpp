@@ -211,23 +211,57 @@ void TimeABite(const fs::path& dir) {
   }
 }
 
+// The orientation of one synthetic jaw's detected frame against the design (L: x left, y up,
+// z anterior; the upper's occlusal axis points down).
+void PrintSyntheticFrame(const analysis::ArchAnalysis& a) {
+  const Eigen::Vector3d up = a.jaw == io::Jaw::kLower ? Eigen::Vector3d::UnitY()
+                                                      : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
+  const auto deg = [](const Eigen::Vector3d& a_, const Eigen::Vector3d& b) {
+    return std::acos(std::clamp(a_.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  std::printf("| %s | %zu | %zu | %.2f | %.2f | %.2f |\n", io::ToString(a.jaw), a.teeth.size(),
+              a.landmarks.size(), deg(a.frame.occlusal_J, up),
+              deg(a.frame.anterior_J, Eigen::Vector3d::UnitZ()),
+              deg(a.frame.lateral_J, Eigen::Vector3d::UnitX()));
+}
+
+// The synthetic pair (seed 1, 20,000 triangles): the detected frames, the detection against the
+// generator's landmarks, and the relationships from detected and from its landmarks against the
+// designed ones.
 void Synthetic() {
   const io::SyntheticJawPair pair = io::MakeSyntheticJawPair({});
   std::printf(
       "\n| synthetic jaw | teeth | landmarks | occlusal err deg | anterior err deg | "
       "left err deg |\n|---|---|---|---|---|---|\n");
+  analysis::ArchAnalysis jaws[2];
+  std::map<std::string, Errors> errors;
+  std::vector<io::Landmark> given[2];
   for (const io::Jaw jaw : {io::Jaw::kLower, io::Jaw::kUpper}) {
-    const auto& mesh = jaw == io::Jaw::kLower ? pair.lower_L : pair.upper_U;
-    const analysis::ArchAnalysis a = analysis::AnalyzeArch(mesh, jaw);
-    const Eigen::Vector3d up = jaw == io::Jaw::kLower ? Eigen::Vector3d::UnitY()
-                                                      : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
-    const auto deg = [](const Eigen::Vector3d& a_, const Eigen::Vector3d& b) {
-      return std::acos(std::clamp(a_.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
-    };
-    std::printf("| %s | %zu | %zu | %.2f | %.2f | %.2f |\n", io::ToString(jaw), a.teeth.size(),
-                a.landmarks.size(), deg(a.frame.occlusal_J, up),
-                deg(a.frame.anterior_J, Eigen::Vector3d::UnitZ()),
-                deg(a.frame.lateral_J, Eigen::Vector3d::UnitX()));
+    const int j = jaw == io::Jaw::kUpper ? 1 : 0;
+    jaws[j] = analysis::AnalyzeArch(j ? pair.upper_U : pair.lower_L, jaw);
+    PrintSyntheticFrame(jaws[j]);
+    Score(jaws[j], pair.landmarks, &errors);
+  }
+  for (const io::Landmark& l : pair.landmarks) given[l.jaw == io::Jaw::kUpper ? 1 : 0].push_back(l);
+  PrintDetection("synthetic", errors, nullptr);
+  const io::SyntheticRelationships& d = pair.relationships;
+  const std::vector<double> designed = {d.overjet_mm,     d.overbite_mm,   d.midline_deviation_mm,
+                                        d.molar_mm.right, d.molar_mm.left, d.canine_mm.right,
+                                        d.canine_mm.left};
+  const auto from_given =
+      Values(analysis::ComputeRelationships(given[1], given[0], pair.X_LU, std::nullopt));
+  const auto detected = Values(
+      analysis::ComputeRelationships(jaws[1].Points(), jaws[0].Points(), pair.X_LU, jaws[0].frame));
+  std::printf(
+      "\n| synthetic | designed | from its landmarks | detected | detected - designed | class "
+      "designed / detected |\n|---|---|---|---|---|---|\n");
+  for (std::size_t i = 0; i < 7; ++i) {
+    std::optional<double> diff;
+    if (detected[i]) diff = *detected[i] - designed[i];
+    const std::string cls = i >= 3 ? Class(designed[i]) + " / " + Class(detected[i]) : "";
+    std::printf("| %s | %.2f | %s | %s | %s | %s |\n", kMeasureNames[i], designed[i],
+                Num(from_given[i]).c_str(), Num(detected[i]).c_str(), Num(diff).c_str(),
+                cls.c_str());
   }
 }
 
