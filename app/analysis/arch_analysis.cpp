@@ -2,6 +2,8 @@
 // (tooth_regions.h), each tooth's landmarks (tooth_landmarks.h), then the frame and midline.
 #include "arch_analysis.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "arch_geometry.h"
@@ -34,6 +36,13 @@ ToothView ViewOf(const io::TriangleMesh& mesh, const ArchGeometry& g, const Toot
                               kToothDepthMm);
   }
   return ShellToothView(mesh, g, r.fdi, jaw, r.triangles);
+}
+
+// Two teeth next to each other in one arch (11 and 21, 41 and 31 across the midline).
+bool Neighbours(int fdi_a, int fdi_b) {
+  const int pa = io::ToothPosition(fdi_a), pb = io::ToothPosition(fdi_b);
+  if (fdi_a / 10 == fdi_b / 10) return std::abs(pa - pb) == 1;
+  return pa == 1 && pb == 1;
 }
 
 ArchTooth Summarize(const ToothRegion& r, const ToothView& view) {
@@ -126,11 +135,18 @@ ArchAnalysis AnalyzeArch(const io::TriangleMesh& jaw_J, io::Jaw which,
     SetFrame(*g, &out);
     return out;
   }
+  std::vector<ToothView> views;
   for (const ToothRegion& r : regions) {
-    const ToothView view = ViewOf(jaw_J, *g, r, which);
-    out.teeth.push_back(Summarize(r, view));
-    for (ArchLandmark& l : DetectToothLandmarks(view, r.confidence)) {
+    views.push_back(ViewOf(jaw_J, *g, r, which));
+    out.teeth.push_back(Summarize(r, views.back()));
+    for (ArchLandmark& l : DetectToothLandmarks(views.back(), r.confidence)) {
       out.landmarks.push_back(std::move(l));
+    }
+  }
+  for (std::size_t k = 0; k + 1 < views.size(); ++k) {
+    if (Neighbours(views[k].fdi, views[k + 1].fdi)) {
+      PlaceContacts(views[k], views[k + 1],
+                    std::min(regions[k].confidence, regions[k + 1].confidence), &out.landmarks);
     }
   }
   SetFrame(*g, &out);

@@ -17,12 +17,17 @@ using io::LandmarkType;
 
 constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
 constexpr double kCuspProminenceMm = 0.05;
+constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
 constexpr double kIncisalSliceShare = 0.1;    // incisal edge: middle tenth of the crown's length
+constexpr double kIncisalTopMm = 0.5;         // ... of the ridge this close to the crown's top
+constexpr double kIncisalRidgeMm = 0.15;      // ... its cells this close to the slice's top
 constexpr double kCanineTipShare = 0.3;       // canine tip: within this of the middle
 constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
 constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
+constexpr double kContactSearchMm = 2.5;      // whole crowns: the closest pair this near ends
+constexpr double kContactTieMm = 0.05;        // ... or the highest of pairs this much farther
 constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
 constexpr double kClinicalCrownShare = 0.8;   // the gingiva covers the rest of the crown
 constexpr double kFacialHeightTolMm = 0.5;
@@ -105,6 +110,23 @@ ArchLandmark Make(const ToothView& view, LandmarkType type, const Eigen::Vector3
   return l;
 }
 
+// The middle of the plateau around a peak cell: the mean of the cells within kCuspRadiusMm
+// whose height is within kPlateauMm of the peak's (a flat top has no single highest cell).
+Eigen::Vector3d PlateauCentre(const HeightMap& map, int peak) {
+  const double h = map.height[static_cast<std::size_t>(peak)];
+  const Eigen::Vector2d q = map.Centre(peak);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (!map.Filled(c) || map.height[static_cast<std::size_t>(c)] < h - kPlateauMm ||
+        (map.Centre(c) - q).norm() > kCuspRadiusMm)
+      continue;
+    sum += map.Point_J(c);
+    ++n;
+  }
+  return sum / n;
+}
+
 // Cusp tips: in each slot's region the highest peak, more sure when it is the region's top.
 void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const std::vector<int> peaks = HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm);
@@ -128,26 +150,47 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
         region_top = std::max(region_top, view.top.height[static_cast<std::size_t>(c)]);
     }
     const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
-    out->push_back(Make(view, slot.type, view.top.Point_J(best), is_top ? 0.9 : 0.6,
+    out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
                         "highest local maximum of the occlusal surface in the cusp's region"));
   }
 }
 
-// The incisal edge's middle: the highest cell of the crown's middle slice.
+// The incisal edge's middle: the mean of the cells of the crown's middle slice within
+// kIncisalRidgeMm of its highest (a flat edge has no single highest point), the slice centred on
+// the middle of the incisal ridge (the crown's cells within kIncisalTopMm of its top) rather
+// than of the segmented span.
 void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
-  const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
-  int best = -1;
-  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
-    if (!view.top.Filled(c) ||
-        std::abs(view.top_uvw[static_cast<std::size_t>(c)].x() - box.u_mid) > half)
-      continue;
-    if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
-                        view.top.height[static_cast<std::size_t>(best)])
-      best = c;
+  const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
+  const auto h_of = [&](int c) { return view.top.height[static_cast<std::size_t>(c)]; };
+  const int cells = view.top.nx * view.top.ny;
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c)) top = std::max(top, h_of(c));
   }
-  if (best >= 0) {
-    out->push_back(Make(view, LandmarkType::kIncisalEdge, view.top.Point_J(best), 0.8,
-                        "highest point of the crown's middle slice"));
+  std::vector<double> ridge_u;
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c) && h_of(c) >= top - kIncisalTopMm) ridge_u.push_back(u_of(c));
+  }
+  if (ridge_u.empty()) return;
+  const double u_mid = 0.5 * (Quantile(ridge_u, 0.05) + Quantile(ridge_u, 0.95));
+  const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
+  double slice_top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c) && std::abs(u_of(c) - u_mid) <= half)
+      slice_top = std::max(slice_top, h_of(c));
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int c = 0; c < cells; ++c) {
+    if (!view.top.Filled(c) || std::abs(u_of(c) - u_mid) > half ||
+        h_of(c) < slice_top - kIncisalRidgeMm)
+      continue;
+    sum += view.top.Point_J(c);
+    ++n;
+  }
+  if (n > 0) {
+    out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / n, 0.8,
+                        "middle of the incisal ridge's highest cells"));
   }
 }
 
@@ -232,7 +275,67 @@ void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<Ar
   }
 }
 
+// The vertices of a whole crown near its end facing the neighbour (mesial or distal), within
+// kContactDepthMm of its top and kContactAcrossShare of its width from its middle across.
+std::vector<std::size_t> NearEnd(const ToothView& view, bool mesial) {
+  const CrownBox box = Box(view);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+    const Eigen::Vector3d& x = view.surface_uvw[i];
+    const double inside = mesial ? view.u_mesial - x.x() : x.x() - view.u_distal;
+    if (inside <= kContactSearchMm && x.z() >= box.top - kContactDepthMm &&
+        std::abs(x.y() - box.v_mid) <= kContactAcrossShare * box.width)
+      out.push_back(i);
+  }
+  return out;
+}
+
+void ReplaceLandmark(ArchLandmark l, std::vector<ArchLandmark>* landmarks) {
+  for (ArchLandmark& d : *landmarks) {
+    if (d.landmark.jaw == l.landmark.jaw && d.landmark.tooth_fdi == l.landmark.tooth_fdi &&
+        d.landmark.type == l.landmark.type) {
+      d = std::move(l);
+      return;
+    }
+  }
+  landmarks->push_back(std::move(l));
+}
+
 }  // namespace
+
+void PlaceContacts(const ToothView& a, const ToothView& b, double tooth_confidence,
+                   std::vector<ArchLandmark>* landmarks) {
+  if (!a.whole_crown || !b.whole_crown) return;
+  // Along the arch right to left: a faces b with its mesial end on the right side, b faces a
+  // with its mesial end on the left side.
+  const bool a_mesial = !io::IsLeftSide(a.fdi), b_mesial = io::IsLeftSide(b.fdi);
+  const std::vector<std::size_t> ia = NearEnd(a, a_mesial), ib = NearEnd(b, b_mesial);
+  if (ia.empty() || ib.empty()) return;
+  // The closest pair; among pairs as close within kContactTieMm (crowns sharing a face) the
+  // highest.
+  double closest = std::numeric_limits<double>::infinity();
+  for (const std::size_t i : ia) {
+    for (const std::size_t j : ib) {
+      closest = std::min(closest, (a.surface_J[i] - b.surface_J[j]).norm());
+    }
+  }
+  double best_height = -std::numeric_limits<double>::infinity();
+  std::size_t best_a = 0, best_b = 0;
+  for (const std::size_t i : ia) {
+    for (const std::size_t j : ib) {
+      const double h = a.surface_uvw[i].z() + b.surface_uvw[j].z();
+      if ((a.surface_J[i] - b.surface_J[j]).norm() <= closest + kContactTieMm && h > best_height)
+        best_height = h, best_a = i, best_b = j;
+    }
+  }
+  const char* method = "closest point to the neighbouring crown";
+  ReplaceLandmark(Make(a, a_mesial ? LandmarkType::kMesial : LandmarkType::kDistal,
+                       a.surface_J[best_a], 0.9 * tooth_confidence, method),
+                  landmarks);
+  ReplaceLandmark(Make(b, b_mesial ? LandmarkType::kMesial : LandmarkType::kDistal,
+                       b.surface_J[best_b], 0.9 * tooth_confidence, method),
+                  landmarks);
+}
 
 double TypicalCrownHeightMm(io::Jaw jaw, int position) {
   const int i = std::clamp(position, 1, 8) - 1;

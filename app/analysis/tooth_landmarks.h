@@ -21,4 +21,11 @@ double TypicalCrownHeightMm(io::Jaw jaw, int position);
 /// their confidences.
 std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double tooth_confidence);
 
+/// Between two neighbouring whole crowns (parts or shells; `a` right of `b` along the arch), the
+/// contact points are where they come closest: replaces a's and b's facing mesial / distal
+/// landmarks in `landmarks` by the closest pair of their vertices near those ends. Does nothing
+/// unless both views are whole crowns.
+void PlaceContacts(const ToothView& a, const ToothView& b, double tooth_confidence,
+                   std::vector<ArchLandmark>* landmarks);
+
 }  // namespace occlude::analysis

@@ -30,6 +30,10 @@ constexpr double kMidlineSigmaMm = 2.0;   // ... each sigma away costing squared
 constexpr double kMinScale = 0.85, kMaxScale = 1.2, kScaleStep = 0.025;
 constexpr int kMinTeethPerSide = 3, kMaxTeethPerSide = 8;
 constexpr double kEndShare = 0.25;  // a crown ends where its weight falls below this share
+// Crowns are told apart by valleys: when the median tooth's boundaries are shallower than this
+// (confidence = 1 - mean valley depth), the surface has no crowns (a box, a dome, a flat base).
+// The c-cases' medians are 0.46-0.75.
+constexpr double kMinMedianConfidence = 0.2;
 constexpr double kRefineMm = 0.75;  // boundaries then move to the profile's minimum this close
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -254,7 +258,14 @@ std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve
     add(p, p == 1 ? best_m : best_left.bounds[static_cast<std::size_t>(p - 2)],
         best_left.bounds[static_cast<std::size_t>(p - 1)], false);
   }
-  if (!teeth.empty()) {
+  std::vector<double> confidence;
+  for (const ToothSpan& t : teeth) confidence.push_back(t.confidence);
+  if (teeth.empty() || Quantile(confidence, 0.5) < kMinMedianConfidence) {
+    *why = "no crowns along the arch (no valleys between crowns: median boundary contrast " +
+           std::to_string(confidence.empty() ? 0.0 : Quantile(confidence, 0.5)) + ")";
+    return {};
+  }
+  {
     TrimEnd(profile, curve.step, &teeth.front().s_lo, teeth.front().s_hi);
     TrimEnd(profile, curve.step, &teeth.back().s_hi, teeth.back().s_lo);
   }

@@ -134,8 +134,11 @@ CaseResult MeasureCase(const fs::path& dir, const std::string& name, const fs::p
     const io::TriangleMesh mesh = io::LoadMesh(dir / (std::string(io::ToString(jaw)) + ".stl"));
     analysis::ArchAnalysis& a = jaws[jaw == io::Jaw::kUpper ? 1 : 0];
     a = analysis::AnalyzeArch(mesh, jaw);
-    std::printf("%s %s: %s, %zu teeth, %zu landmarks%s\n", name.c_str(), io::ToString(jaw),
-                a.ok() ? "ok" : a.error.c_str(), a.teeth.size(), a.landmarks.size(),
+    std::vector<double> confidence;
+    for (const analysis::ArchTooth& t : a.teeth) confidence.push_back(t.confidence);
+    std::printf("%s %s: %s, %zu teeth (confidence min %.2f, median %.2f), %zu landmarks%s\n",
+                name.c_str(), io::ToString(jaw), a.ok() ? "ok" : a.error.c_str(), a.teeth.size(),
+                Percentile(confidence, 0.0), Percentile(confidence, 0.5), a.landmarks.size(),
                 a.notes.empty() ? "" : ("; " + a.notes.front()).c_str());
     Score(a, given, &res.errors);
     if (out) WriteLandmarks(*out / (name + "-" + io::ToString(jaw) + "-landmarks.csv"), a);
@@ -228,7 +231,7 @@ void PrintSyntheticFrame(const analysis::ArchAnalysis& a) {
 // The synthetic pair (seed 1, 20,000 triangles): the detected frames, the detection against the
 // generator's landmarks, and the relationships from detected and from its landmarks against the
 // designed ones.
-void Synthetic() {
+void Synthetic(const fs::path* out) {
   const io::SyntheticJawPair pair = io::MakeSyntheticJawPair({});
   std::printf(
       "\n| synthetic jaw | teeth | landmarks | occlusal err deg | anterior err deg | "
@@ -241,8 +244,19 @@ void Synthetic() {
     jaws[j] = analysis::AnalyzeArch(j ? pair.upper_U : pair.lower_L, jaw);
     PrintSyntheticFrame(jaws[j]);
     Score(jaws[j], pair.landmarks, &errors);
+    if (out)
+      WriteLandmarks(*out / (std::string("synthetic-") + io::ToString(jaw) + "-landmarks.csv"),
+                     jaws[j]);
   }
   for (const io::Landmark& l : pair.landmarks) given[l.jaw == io::Jaw::kUpper ? 1 : 0].push_back(l);
+  if (out) {
+    std::ofstream csv(*out / "synthetic-given-landmarks.csv");
+    csv << "jaw,tooth,type,x_mm,y_mm,z_mm\n";
+    for (const io::Landmark& l : pair.landmarks) {
+      csv << io::ToString(l.jaw) << "," << l.tooth_fdi << "," << io::ToString(l.type) << ","
+          << l.p.x() << "," << l.p.y() << "," << l.p.z() << "\n";
+    }
+  }
   PrintDetection("synthetic", errors, nullptr);
   const io::SyntheticRelationships& d = pair.relationships;
   const std::vector<double> designed = {d.overjet_mm,     d.overbite_mm,   d.midline_deviation_mm,
@@ -307,7 +321,7 @@ int main(int argc, char** argv) {
   }
   PrintDetection("all", all, out ? &detection_csv : nullptr);
   PrintRelationships(cases, out ? &relationships_csv : nullptr);
-  Synthetic();
+  Synthetic(out ? &*out : nullptr);
   TimeABite(data / "cases" / "a-bite-3shape");
   return 0;
 }
