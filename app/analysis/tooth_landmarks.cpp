@@ -18,10 +18,12 @@ using io::LandmarkType;
 constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
 constexpr double kCuspProminenceMm = 0.05;
 constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
-constexpr double kIncisalSliceShare = 0.1;    // incisal edge: middle tenth of the crown's length
-constexpr double kIncisalTopMm = 0.5;         // ... of the ridge this close to the crown's top
-constexpr double kIncisalRidgeMm = 0.15;      // ... its cells this close to the slice's top
-constexpr double kCanineTipShare = 0.3;       // canine tip: within this of the middle
+constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
+constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
+constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
+// A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
+// Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare].
+constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
 constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
@@ -50,7 +52,7 @@ constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
 std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   const bool upper = jaw == io::Jaw::kUpper;
   if (position == 3)
-    return {{LandmarkType::kCuspTip, -kCanineTipShare, kCanineTipShare, Side::kAny}};
+    return {{LandmarkType::kCuspTip, kCanineDistalShare, kCanineMesialShare, Side::kAny}};
   if (position == 4 || (position == 5 && upper)) {
     return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
             {LandmarkType::kLingualCusp, -0.5, 0.5, Side::kLingual}};
@@ -144,11 +146,22 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
         best = c;
       }
     }
-    if (best < 0) continue;
+    int top_cell = -1;
     for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
-      if (view.top.Filled(c) && inside(c))
-        region_top = std::max(region_top, view.top.height[static_cast<std::size_t>(c)]);
+      if (view.top.Filled(c) && inside(c) &&
+          view.top.height[static_cast<std::size_t>(c)] > region_top) {
+        region_top = view.top.height[static_cast<std::size_t>(c)];
+        top_cell = c;
+      }
     }
+    // A canine's region may end on its cusp ridge rising towards the tip's distal side: then its
+    // highest cell, less sure.
+    if (best < 0 && slot.type == LandmarkType::kCuspTip && top_cell >= 0) {
+      out->push_back(Make(view, slot.type, view.top.Point_J(top_cell), 0.4,
+                          "highest point of the canine's tip region (no local maximum in it)"));
+      continue;
+    }
+    if (best < 0) continue;
     const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
     out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
                         "highest local maximum of the occlusal surface in the cusp's region"));
