@@ -112,6 +112,13 @@ ArchLandmark Make(const ToothView& view, LandmarkType type, const Eigen::Vector3
   return l;
 }
 
+// The cusps clinical.md's relationships use: canine tips, buccal cusps of premolars, the
+// mesiobuccal and middle buccal cusps of molars.
+bool MeasuredCusp(LandmarkType type) {
+  return type == LandmarkType::kCuspTip || type == LandmarkType::kBuccalCusp ||
+         type == LandmarkType::kMbCusp || type == LandmarkType::kMiddleBuccalCusp;
+}
+
 // The middle of the plateau around a peak cell: the mean of the cells within kCuspRadiusMm
 // whose height is within kPlateauMm of the peak's (a flat top has no single highest cell).
 Eigen::Vector3d PlateauCentre(const HeightMap& map, int peak) {
@@ -154,11 +161,12 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
         top_cell = c;
       }
     }
-    // A canine's region may end on its cusp ridge rising towards the tip's distal side: then its
-    // highest cell, less sure.
-    if (best < 0 && slot.type == LandmarkType::kCuspTip && top_cell >= 0) {
+    // A region without a local maximum (a canine's ending on its cusp ridge rising distally, a
+    // worn or merged cusp): its highest cell, less sure, for the cusps a relationship rests on
+    // (canine, molar, crossbite); the others are left out.
+    if (best < 0 && top_cell >= 0 && MeasuredCusp(slot.type)) {
       out->push_back(Make(view, slot.type, view.top.Point_J(top_cell), 0.4,
-                          "highest point of the canine's tip region (no local maximum in it)"));
+                          "highest point of the cusp's region (no local maximum in it)"));
       continue;
     }
     if (best < 0) continue;
