@@ -30,15 +30,15 @@ constexpr double kFrameFitMm = 0.05;
 // clinical.md's table is given to 0.01 mm; the given path reproduces it this closely.
 constexpr double kTableMm = 0.05;
 
-struct Pair {
+struct DesignedPair {
   std::vector<io::Landmark> upper_U, lower_L;
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
   io::SyntheticRelationships designed;
 };
 
-Pair SyntheticLandmarks() {
+DesignedPair SyntheticLandmarks() {
   const io::SyntheticJawPair pair = io::MakeSyntheticJawPair({});
-  Pair p;
+  DesignedPair p;
   for (const io::Landmark& l : pair.landmarks) {
     (l.jaw == Jaw::kUpper ? p.upper_U : p.lower_L).push_back(l);
   }
@@ -56,12 +56,12 @@ std::array<double, 7> Values(const Relationships& r) {
           v(r.molar[1].offset), v(r.canine[0].offset), v(r.canine[1].offset)};
 }
 
-Relationships AtPose(const Pair& p, const Eigen::Isometry3d& X_LU) {
+Relationships AtPose(const DesignedPair& p, const Eigen::Isometry3d& X_LU) {
   return ComputeRelationships(p.upper_U, p.lower_L, X_LU, std::nullopt);
 }
 
 TEST(Relationships, SyntheticLandmarksGiveTheDesignedRelationships) {
-  const Pair p = SyntheticLandmarks();
+  const DesignedPair p = SyntheticLandmarks();
   const Relationships r = AtPose(p, p.X_LU);
   EXPECT_EQ(r.frame_source, "landmarks");
   const std::array<double, 7> v = Values(r);
@@ -87,7 +87,7 @@ TEST(Relationships, SyntheticLandmarksGiveTheDesignedRelationships) {
 // occlusal, midline by t along lateral, and each molar / canine offset by t along its lower
 // tooth's mesial direction.
 TEST(Relationships, KnownMotionsOfTheUpperGiveKnownChanges) {
-  const Pair p = SyntheticLandmarks();
+  const DesignedPair p = SyntheticLandmarks();
   const Relationships base = AtPose(p, p.X_LU);
   const std::array<double, 7> v0 = Values(base);
   const auto mesial_dir = [&](int fdi) {
@@ -117,7 +117,7 @@ TEST(Relationships, KnownMotionsOfTheUpperGiveKnownChanges) {
 }
 
 TEST(Relationships, InvariantUnderARigidMotionOfBothJaws) {
-  const Pair p = SyntheticLandmarks();
+  const DesignedPair p = SyntheticLandmarks();
   const Eigen::Isometry3d X_LU = Eigen::Translation3d(0.8, 0.3, 1.9) * p.X_LU;
   const Relationships r0 = AtPose(p, X_LU);
   const Eigen::Isometry3d X_GL =
@@ -136,14 +136,14 @@ TEST(Relationships, InvariantUnderARigidMotionOfBothJaws) {
 // Narrowing the upper arch (its x scaled about the midline) puts its posterior buccal cusps
 // lingual of the lower ones: every upper premolar and molar with landmarks is in crossbite.
 TEST(Relationships, NarrowedUpperArchIsInCrossbite) {
-  Pair p = SyntheticLandmarks();
+  DesignedPair p = SyntheticLandmarks();
   for (io::Landmark& l : p.upper_U) l.p.x() *= 0.7;
   const Relationships r = AtPose(p, p.X_LU);
   EXPECT_EQ(r.crossbite, (std::vector<int>{14, 15, 16, 17, 24, 25, 26, 27}));
 }
 
 TEST(Relationships, MissingLandmarksLeaveTheirMeasuresEmptyWithAReason) {
-  Pair p = SyntheticLandmarks();
+  DesignedPair p = SyntheticLandmarks();
   p.upper_U.erase(std::remove_if(p.upper_U.begin(), p.upper_U.end(),
                                  [](const io::Landmark& l) {
                                    return l.tooth_fdi == 16 && l.type == LandmarkType::kMbCusp;
