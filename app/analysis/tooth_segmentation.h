@@ -37,7 +37,8 @@ CrownProfile MakeCrownProfile(const HeightMap& map, const std::vector<double>& c
 double TypicalWidthMm(io::Jaw jaw, int position);
 
 /// The teeth of one jaw from its crown profile along `curve`, right to left; empty with `why`
-/// when no plausible arrangement exists.
+/// when no plausible arrangement exists or its boundaries are no valleys (the median tooth's
+/// confidence below 0.2: a surface without crowns).
 std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve& curve,
                                     io::Jaw jaw, std::string* why);
 
