@@ -31,7 +31,9 @@ constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middl
 constexpr double kContactSearchMm = 2.5;      // whole crowns: the closest pair this near ends
 constexpr double kContactTieMm = 0.05;        // ... or the highest of pairs this much farther
 constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
-constexpr double kClinicalCrownShare = 0.8;   // the gingiva covers the rest of the crown
+constexpr double kClinicalCrownShare = 0.8;
+constexpr double kCrownBandMm = 3.0;  // a crown's extent across: its cells this close to its top //
+                                      // the gingiva covers the rest of the crown
 constexpr double kFacialHeightTolMm = 0.5;
 
 // Wheeler's anatomical crown heights (cervical line to cusp tip / incisal edge), positions 1-8.
@@ -82,12 +84,17 @@ struct CrownBox {
 
 CrownBox Box(const ToothView& view) {
   CrownBox box;
-  std::vector<double> v;
   box.top = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
-    if (!view.top.Filled(c)) continue;
-    v.push_back(view.top_uvw[static_cast<std::size_t>(c)].y());
-    box.top = std::max(box.top, view.top_uvw[static_cast<std::size_t>(c)].z());
+    if (view.top.Filled(c))
+      box.top = std::max(box.top, view.top_uvw[static_cast<std::size_t>(c)].z());
+  }
+  // Across the arch, the crown alone: the cells within kCrownBandMm of its top (a scan's view
+  // also holds gingiva and, on an upper jaw, palate within its reach of the curve).
+  std::vector<double> v;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (view.top.Filled(c) && x.z() >= box.top - kCrownBandMm) v.push_back(x.y());
   }
   box.u_mid = 0.5 * (view.u_mesial + view.u_distal);
   box.length = std::max(view.u_mesial - view.u_distal, 1e-6);
