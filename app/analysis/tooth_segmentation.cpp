@@ -29,7 +29,8 @@ constexpr double kMidlineSearchMm = 6.0;  // the midline lies this close to the 
 constexpr double kMidlineSigmaMm = 2.0;   // ... each sigma away costing squared
 constexpr double kMinScale = 0.85, kMaxScale = 1.2, kScaleStep = 0.025;
 constexpr int kMinTeethPerSide = 3, kMaxTeethPerSide = 8;
-constexpr double kEndShare = 0.25;  // a crown ends where its weight falls below this share
+constexpr double kEndShare = 0.25;
+constexpr double kLastToothMaxShare = 1.0;  // a crown ends where its weight falls below this share
 // Crowns are told apart by valleys: when the median tooth's boundaries are shallower than this
 // (confidence = 1 - mean valley depth), the surface has no crowns (a box, a dome, a flat base).
 // The c-cases' medians are 0.46-0.75.
@@ -191,6 +192,22 @@ void TrimEnd(const CrownProfile& profile, double step, double* outer, double inn
   *outer = step * static_cast<double>(k);
 }
 
+// The outer ends of the two sides' last teeth: where their crowns end (TrimEnd), and no longer
+// than the arch's scaled typical width times kLastToothMaxShare (the gingiva rising behind the
+// last molar towards the ramus looks like crown).
+void FinishEnds(const CrownProfile& profile, double step, io::Jaw jaw, double scale,
+                std::vector<ToothSpan>* teeth) {
+  ToothSpan& right = teeth->front();
+  ToothSpan& left = teeth->back();
+  TrimEnd(profile, step, &right.s_lo, right.s_hi);
+  TrimEnd(profile, step, &left.s_hi, left.s_lo);
+  const auto longest = [&](const ToothSpan& t) {
+    return kLastToothMaxShare * scale * TypicalWidthMm(jaw, io::ToothPosition(t.fdi));
+  };
+  right.s_lo = std::max(right.s_lo, right.s_hi - longest(right));
+  left.s_hi = std::min(left.s_hi, left.s_lo + longest(left));
+}
+
 }  // namespace
 
 double TypicalWidthMm(io::Jaw jaw, int position) {
@@ -220,7 +237,7 @@ std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve
   const Problem pb = MakeProblem(profile, curve.step, jaw);
   const int apex = static_cast<int>(std::lround(curve.symmetry_s / kStationMm));
   const int reach = static_cast<int>(std::lround(kMidlineSearchMm / kStationMm));
-  double best = kInf;
+  double best = kInf, best_scale = 1.0;
   int best_m = -1;
   SidePlan best_right, best_left;
   for (double scale = kMinScale; scale <= kMaxScale + 1e-9; scale += kScaleStep) {
@@ -229,7 +246,9 @@ std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve
       const SidePlan left = PlanSide(pb, m, +1, scale);
       const double cost =
           right.cost + left.cost + kValleyWeight * pb.valley[static_cast<std::size_t>(m)];
-      if (cost < best) best = cost, best_m = m, best_right = right, best_left = left;
+      if (cost < best) {
+        best = cost, best_scale = scale, best_m = m, best_right = right, best_left = left;
+      }
     }
   }
   if (best_m < 0 || best == kInf) {
@@ -265,10 +284,7 @@ std::vector<ToothSpan> SegmentTeeth(const CrownProfile& profile, const ArchCurve
            std::to_string(confidence.empty() ? 0.0 : Quantile(confidence, 0.5)) + ")";
     return {};
   }
-  {
-    TrimEnd(profile, curve.step, &teeth.front().s_lo, teeth.front().s_hi);
-    TrimEnd(profile, curve.step, &teeth.back().s_hi, teeth.back().s_lo);
-  }
+  FinishEnds(profile, curve.step, jaw, best_scale, &teeth);
   return teeth;
 }
 
