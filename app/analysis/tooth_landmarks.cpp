@@ -1,0 +1,390 @@
+// Landmark rules per tooth class (tooth_landmarks.h). Regions are in tooth coordinates relative
+// to the crown's middle: u_rel = (u - u_mid) / length in [-1/2, 1/2] (mesial positive) and the
+// side of v against the crown's middle across the arch.
+#include "tooth_landmarks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry_util.h"
+#include "occlusal_plane.h"
+
+namespace occlude::analysis {
+namespace {
+
+using io::LandmarkType;
+
+constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
+constexpr double kCuspProminenceMm = 0.05;
+constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
+constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
+constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
+constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
+// A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
+// Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare].
+constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
+constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
+constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
+constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
+constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
+constexpr double kContactSearchMm = 2.5;      // whole crowns: the closest pair this near ends
+constexpr double kContactTieMm = 0.05;        // ... or the highest of pairs this much farther
+constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
+constexpr double kClinicalCrownShare = 0.8;
+constexpr double kCrownBandMm = 3.0;  // a crown's extent across: its cells this close to its top //
+                                      // the gingiva covers the rest of the crown
+constexpr double kFacialHeightTolMm = 0.5;
+
+// Wheeler's anatomical crown heights (cervical line to cusp tip / incisal edge), positions 1-8.
+constexpr double kUpperCrownMm[8] = {10.5, 9.0, 10.0, 8.5, 7.5, 7.5, 7.0, 6.5};
+constexpr double kLowerCrownMm[8] = {9.0, 9.5, 11.0, 8.5, 8.0, 7.5, 7.0, 6.5};
+
+enum class Side { kAny, kBuccal, kLingual };
+
+// A cusp's region: u_rel within [u_lo, u_hi], on `side` of the middle across.
+struct CuspSlot {
+  LandmarkType type;
+  double u_lo, u_hi;
+  Side side;
+};
+
+constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
+
+std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
+  const bool upper = jaw == io::Jaw::kUpper;
+  if (position == 3)
+    return {{LandmarkType::kCuspTip, kCanineDistalShare, kCanineMesialShare, Side::kAny}};
+  if (position == 4 || (position == 5 && upper)) {
+    return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
+            {LandmarkType::kLingualCusp, -0.5, 0.5, Side::kLingual}};
+  }
+  if (position == 5) {  // lower second premolar: one buccal, two lingual cusps
+    return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
+            {LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
+            {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
+  }
+  std::vector<CuspSlot> slots = {{LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
+                                 {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
+  if (!upper && position == 6) {  // lower first molar: three buccal cusps
+    slots.push_back({LandmarkType::kMbCusp, kThird, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kMiddleBuccalCusp, -kThird, kThird, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, -kThird, Side::kBuccal});
+  } else {
+    slots.push_back({LandmarkType::kMbCusp, 0.0, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, 0.0, Side::kBuccal});
+  }
+  return slots;
+}
+
+// The crown's middle and size in tooth coordinates.
+struct CrownBox {
+  double u_mid = 0.0, length = 1.0, v_mid = 0.0, width = 1.0, top = 0.0;
+};
+
+CrownBox Box(const ToothView& view) {
+  CrownBox box;
+  box.top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (view.top.Filled(c))
+      box.top = std::max(box.top, view.top_uvw[static_cast<std::size_t>(c)].z());
+  }
+  // Across the arch, the crown alone: the cells within kCrownBandMm of its top (a scan's view
+  // also holds gingiva and, on an upper jaw, palate within its reach of the curve).
+  std::vector<double> v;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (view.top.Filled(c) && x.z() >= box.top - kCrownBandMm) v.push_back(x.y());
+  }
+  box.u_mid = 0.5 * (view.u_mesial + view.u_distal);
+  box.length = std::max(view.u_mesial - view.u_distal, 1e-6);
+  box.v_mid = 0.5 * (Quantile(v, 0.05) + Quantile(v, 0.95));
+  box.width = std::max(Quantile(v, 0.95) - Quantile(v, 0.05), 1e-6);
+  return box;
+}
+
+bool OnSide(Side side, double v, const CrownBox& box) {
+  return side == Side::kAny || (side == Side::kBuccal ? v > box.v_mid : v < box.v_mid);
+}
+
+ArchLandmark Make(const ToothView& view, LandmarkType type, const Eigen::Vector3d& p_J,
+                  double confidence, const char* method) {
+  ArchLandmark l;
+  l.landmark.jaw = view.jaw;
+  l.landmark.tooth_fdi = view.fdi;
+  l.landmark.type = type;
+  l.landmark.p = p_J;
+  l.confidence = std::clamp(confidence, 0.0, 1.0);
+  l.method = method;
+  return l;
+}
+
+// The cusps clinical.md's relationships use: canine tips, buccal cusps of premolars, the
+// mesiobuccal and middle buccal cusps of molars.
+bool MeasuredCusp(LandmarkType type) {
+  return type == LandmarkType::kCuspTip || type == LandmarkType::kBuccalCusp ||
+         type == LandmarkType::kMbCusp || type == LandmarkType::kMiddleBuccalCusp;
+}
+
+// The middle of the plateau around a peak cell: the mean of the cells within kCuspRadiusMm
+// whose height is within kPlateauMm of the peak's (a flat top has no single highest cell).
+Eigen::Vector3d PlateauCentre(const HeightMap& map, int peak) {
+  const double h = map.height[static_cast<std::size_t>(peak)];
+  const Eigen::Vector2d q = map.Centre(peak);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (!map.Filled(c) || map.height[static_cast<std::size_t>(c)] < h - kPlateauMm ||
+        (map.Centre(c) - q).norm() > kCuspRadiusMm)
+      continue;
+    sum += map.Point_J(c);
+    ++n;
+  }
+  return sum / n;
+}
+
+// Cusp tips: in each slot's region the highest peak, more sure when it is the region's top.
+void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const std::vector<int> peaks = HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm);
+  for (const CuspSlot& slot : CuspSlots(view.jaw, io::ToothPosition(view.fdi))) {
+    int best = -1;
+    double region_top = -std::numeric_limits<double>::infinity();
+    const auto inside = [&](int c) {
+      const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+      const double u = (x.x() - box.u_mid) / box.length;
+      return u >= slot.u_lo && u <= slot.u_hi && OnSide(slot.side, x.y(), box);
+    };
+    for (const int c : peaks) {
+      if (inside(c) && (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                                        view.top.height[static_cast<std::size_t>(best)])) {
+        best = c;
+      }
+    }
+    int top_cell = -1;
+    for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+      if (view.top.Filled(c) && inside(c) &&
+          view.top.height[static_cast<std::size_t>(c)] > region_top) {
+        region_top = view.top.height[static_cast<std::size_t>(c)];
+        top_cell = c;
+      }
+    }
+    // A region without a local maximum (a canine's ending on its cusp ridge rising distally, a
+    // worn or merged cusp): its highest cell, less sure, for the cusps a relationship rests on
+    // (canine, molar, crossbite); the others are left out.
+    if (best < 0 && top_cell >= 0 && MeasuredCusp(slot.type)) {
+      out->push_back(Make(view, slot.type, view.top.Point_J(top_cell), 0.4,
+                          "highest point of the cusp's region (no local maximum in it)"));
+      continue;
+    }
+    if (best < 0) continue;
+    const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
+    out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
+                        "highest local maximum of the occlusal surface in the cusp's region"));
+  }
+}
+
+// The incisal edge's middle: the mean of the cells of the crown's middle slice within
+// kIncisalRidgeMm of its highest (a flat edge has no single highest point), the slice centred on
+// the middle of the incisal ridge (the crown's cells within kIncisalTopMm of its top) rather
+// than of the segmented span.
+void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
+  const auto h_of = [&](int c) { return view.top.height[static_cast<std::size_t>(c)]; };
+  const int cells = view.top.nx * view.top.ny;
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c)) top = std::max(top, h_of(c));
+  }
+  std::vector<double> ridge_u;
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c) && h_of(c) >= top - kIncisalTopMm) ridge_u.push_back(u_of(c));
+  }
+  if (ridge_u.empty()) return;
+  const double u_mid = 0.5 * (Quantile(ridge_u, 0.05) + Quantile(ridge_u, 0.95));
+  const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
+  double slice_top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < cells; ++c) {
+    if (view.top.Filled(c) && std::abs(u_of(c) - u_mid) <= half)
+      slice_top = std::max(slice_top, h_of(c));
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int c = 0; c < cells; ++c) {
+    if (!view.top.Filled(c) || std::abs(u_of(c) - u_mid) > half ||
+        h_of(c) < slice_top - kIncisalRidgeMm)
+      continue;
+    sum += view.top.Point_J(c);
+    ++n;
+  }
+  if (n > 0) {
+    out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / n, 0.8,
+                        "middle of the incisal ridge's highest cells"));
+  }
+}
+
+// The central fossa: the lowest cell of the crown's middle.
+void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  int best = -1;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!view.top.Filled(c)) continue;
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (std::abs(x.x() - box.u_mid) > kFossaShare * box.length ||
+        std::abs(x.y() - box.v_mid) > kFossaShare * box.width)
+      continue;
+    if (best < 0 || view.top.height[static_cast<std::size_t>(c)] <
+                        view.top.height[static_cast<std::size_t>(best)])
+      best = c;
+  }
+  if (best >= 0) {
+    out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(best), 0.6,
+                        "lowest point of the occlusal surface's middle"));
+  }
+}
+
+// Contact points: a whole crown's most mesial / distal surface point near its top; on a scan,
+// the highest point at the boundary with the neighbour (the bottom of the occlusal embrasure).
+void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  for (const bool mesial : {true, false}) {
+    const double sign = mesial ? 1.0 : -1.0;
+    const double end = mesial ? view.u_mesial : view.u_distal;
+    const LandmarkType type = mesial ? LandmarkType::kMesial : LandmarkType::kDistal;
+    const double across = kContactAcrossShare * box.width;
+    if (view.whole_crown) {
+      int best = -1;
+      for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+        const Eigen::Vector3d& x = view.surface_uvw[i];
+        if (x.z() < box.top - kContactDepthMm || std::abs(x.y() - box.v_mid) > across) continue;
+        if (best < 0 || sign * x.x() > sign * view.surface_uvw[static_cast<std::size_t>(best)].x())
+          best = static_cast<int>(i);
+      }
+      if (best >= 0) {
+        out->push_back(Make(view, type, view.surface_J[static_cast<std::size_t>(best)], 0.8,
+                            "most mesial / distal point of the crown near its top"));
+      }
+      continue;
+    }
+    int best = -1;
+    for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+      if (!view.top.Filled(c)) continue;
+      const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+      if (sign * (end - x.x()) > kContactBandMm || std::abs(x.y() - box.v_mid) > across) continue;
+      if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                          view.top.height[static_cast<std::size_t>(best)])
+        best = c;
+    }
+    if (best >= 0) {
+      out->push_back(Make(view, type, view.top.Point_J(best), 0.6,
+                          "highest point at the boundary with the neighbouring crown"));
+    }
+  }
+}
+
+// Facial / lingual: the outermost surface point of the middle slice on each side at half the
+// clinical crown's height below the top.
+void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const double target = box.top - 0.5 * kClinicalCrownShare *
+                                      TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
+  for (const bool facial : {true, false}) {
+    const double sign = facial ? 1.0 : -1.0;
+    int best = -1;
+    for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+      const Eigen::Vector3d& x = view.surface_uvw[i];
+      if (std::abs(x.x() - box.u_mid) > kSliceMm || std::abs(x.z() - target) > kFacialHeightTolMm ||
+          sign * (x.y() - box.v_mid) <= 0.0)
+        continue;
+      if (best < 0 || sign * x.y() > sign * view.surface_uvw[static_cast<std::size_t>(best)].y())
+        best = static_cast<int>(i);
+    }
+    if (best >= 0) {
+      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual,
+                          view.surface_J[static_cast<std::size_t>(best)], 0.5,
+                          "outer surface of the middle slice, half the clinical crown down"));
+    }
+  }
+}
+
+// The vertices of a whole crown near its end facing the neighbour (mesial or distal), within
+// kContactDepthMm of its top and kContactAcrossShare of its width from its middle across.
+std::vector<std::size_t> NearEnd(const ToothView& view, bool mesial) {
+  const CrownBox box = Box(view);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
+    const Eigen::Vector3d& x = view.surface_uvw[i];
+    const double inside = mesial ? view.u_mesial - x.x() : x.x() - view.u_distal;
+    if (inside <= kContactSearchMm && x.z() >= box.top - kContactDepthMm &&
+        std::abs(x.y() - box.v_mid) <= kContactAcrossShare * box.width)
+      out.push_back(i);
+  }
+  return out;
+}
+
+void ReplaceLandmark(ArchLandmark l, std::vector<ArchLandmark>* landmarks) {
+  for (ArchLandmark& d : *landmarks) {
+    if (d.landmark.jaw == l.landmark.jaw && d.landmark.tooth_fdi == l.landmark.tooth_fdi &&
+        d.landmark.type == l.landmark.type) {
+      d = std::move(l);
+      return;
+    }
+  }
+  landmarks->push_back(std::move(l));
+}
+
+}  // namespace
+
+void PlaceContacts(const ToothView& a, const ToothView& b, double tooth_confidence,
+                   std::vector<ArchLandmark>* landmarks) {
+  if (!a.whole_crown || !b.whole_crown) return;
+  // Along the arch right to left: a faces b with its mesial end on the right side, b faces a
+  // with its mesial end on the left side.
+  const bool a_mesial = !io::IsLeftSide(a.fdi), b_mesial = io::IsLeftSide(b.fdi);
+  const std::vector<std::size_t> ia = NearEnd(a, a_mesial), ib = NearEnd(b, b_mesial);
+  if (ia.empty() || ib.empty()) return;
+  // The closest pair; among pairs as close within kContactTieMm (crowns sharing a face) the
+  // highest.
+  double closest = std::numeric_limits<double>::infinity();
+  for (const std::size_t i : ia) {
+    for (const std::size_t j : ib) {
+      closest = std::min(closest, (a.surface_J[i] - b.surface_J[j]).norm());
+    }
+  }
+  double best_height = -std::numeric_limits<double>::infinity();
+  std::size_t best_a = 0, best_b = 0;
+  for (const std::size_t i : ia) {
+    for (const std::size_t j : ib) {
+      const double h = a.surface_uvw[i].z() + b.surface_uvw[j].z();
+      if ((a.surface_J[i] - b.surface_J[j]).norm() <= closest + kContactTieMm && h > best_height)
+        best_height = h, best_a = i, best_b = j;
+    }
+  }
+  const char* method = "closest point to the neighbouring crown";
+  ReplaceLandmark(Make(a, a_mesial ? LandmarkType::kMesial : LandmarkType::kDistal,
+                       a.surface_J[best_a], 0.9 * tooth_confidence, method),
+                  landmarks);
+  ReplaceLandmark(Make(b, b_mesial ? LandmarkType::kMesial : LandmarkType::kDistal,
+                       b.surface_J[best_b], 0.9 * tooth_confidence, method),
+                  landmarks);
+}
+
+double TypicalCrownHeightMm(io::Jaw jaw, int position) {
+  const int i = std::clamp(position, 1, 8) - 1;
+  return jaw == io::Jaw::kUpper ? kUpperCrownMm[i] : kLowerCrownMm[i];
+}
+
+std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double tooth_confidence) {
+  std::vector<ArchLandmark> out;
+  if (view.top.nx == 0) return out;
+  const CrownBox box = Box(view);
+  const int position = io::ToothPosition(view.fdi);
+  if (position <= 2) {
+    AddIncisalEdge(view, box, &out);
+  } else {
+    AddCusps(view, box, &out);
+  }
+  if (position >= 4) AddCentralFossa(view, box, &out);
+  AddContacts(view, box, &out);
+  AddSurfacePoints(view, box, &out);
+  for (ArchLandmark& l : out) l.confidence *= tooth_confidence;
+  return out;
+}
+
+}  // namespace occlude::analysis

@@ -1,0 +1,128 @@
+// Tooth views (tooth_view.h): cropping the jaw's occlusal view to one tooth, or rasterizing a
+// tooth's own triangles, and expressing cells and vertices in tooth coordinates.
+#include "tooth_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry_util.h"
+
+namespace occlude::analysis {
+namespace {
+
+// A map over the bounding box of the cells `keep` of `map`, the others NaN.
+HeightMap Crop(const HeightMap& map, const std::vector<int>& keep) {
+  HeightMap out;
+  out.axes = map.axes;
+  out.cell = map.cell;
+  if (keep.empty()) return out;
+  int i0 = map.nx, i1 = -1, j0 = map.ny, j1 = -1;
+  for (const int c : keep) {
+    i0 = std::min(i0, c % map.nx), i1 = std::max(i1, c % map.nx);
+    j0 = std::min(j0, c / map.nx), j1 = std::max(j1, c / map.nx);
+  }
+  out.nx = i1 - i0 + 1;
+  out.ny = j1 - j0 + 1;
+  out.corner = map.corner + map.cell * Eigen::Vector2d(i0, j0);
+  out.height.assign(static_cast<std::size_t>(out.nx * out.ny),
+                    std::numeric_limits<double>::quiet_NaN());
+  out.triangle.assign(out.height.size(), -1);
+  for (const int c : keep) {
+    const auto k = static_cast<std::size_t>(out.Index(c % map.nx - i0, c / map.nx - j0));
+    out.height[k] = map.height[static_cast<std::size_t>(c)];
+    out.triangle[k] = map.triangle[static_cast<std::size_t>(c)];
+  }
+  return out;
+}
+
+Eigen::Vector3d Uvw(const ArchCurve::Projection& st, double h, double s_mid, double sign) {
+  return {sign * (st.s - s_mid), st.t, h};
+}
+
+// Fills top_uvw from the cells' projections and the u range of the crown from its cells.
+void FillTop(const ArchGeometry& g, ToothView* view) {
+  view->top_uvw.assign(view->top.height.size(), Eigen::Vector3d::Zero());
+  std::vector<double> u;
+  for (int c = 0; c < view->top.nx * view->top.ny; ++c) {
+    if (!view->top.Filled(c)) continue;
+    const ArchCurve::Projection st = g.curve.Project(view->top.Centre(c));
+    view->top_uvw[static_cast<std::size_t>(c)] =
+        Uvw(st, view->top.height[static_cast<std::size_t>(c)], view->s_mid, view->mesial_sign);
+    u.push_back(view->top_uvw[static_cast<std::size_t>(c)].x());
+  }
+  if (view->u_mesial == view->u_distal && !u.empty()) {
+    view->u_mesial = Quantile(u, 0.99);
+    view->u_distal = Quantile(u, 0.01);
+  }
+}
+
+}  // namespace
+
+double MesialSign(int fdi) { return (fdi / 10 == 1 || fdi / 10 == 4) ? 1.0 : -1.0; }
+
+Eigen::Vector3d ToothCoordinates(const ArchGeometry& g, double s_mid, double mesial_sign,
+                                 const Eigen::Vector3d& p_J) {
+  return Uvw(g.curve.Project(g.axes.Plane(p_J)), g.axes.Height(p_J), s_mid, mesial_sign);
+}
+
+ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi,
+                             io::Jaw jaw, double s_lo, double s_hi, double half_width_mm,
+                             double depth_mm) {
+  ToothView view;
+  view.fdi = fdi;
+  view.jaw = jaw;
+  view.s_mid = 0.5 * (s_lo + s_hi);
+  view.mesial_sign = MesialSign(fdi);
+  view.u_mesial = 0.5 * (s_hi - s_lo);
+  view.u_distal = -view.u_mesial;
+  std::vector<int> cells;
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < g.top.nx * g.top.ny; ++c) {
+    const ArchCurve::Projection& st = g.cell_st[static_cast<std::size_t>(c)];
+    if (!g.top.Filled(c) || st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm) continue;
+    cells.push_back(c);
+    top = std::max(top, g.top.height[static_cast<std::size_t>(c)]);
+  }
+  view.top = Crop(g.top, cells);
+  FillTop(g, &view);
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    const ArchCurve::Projection& st = g.vertex_st[v];
+    const double h = g.axes.Height(mesh.vertices[v]);
+    if (st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm || h < top - depth_mm)
+      continue;
+    view.surface_J.push_back(mesh.vertices[v]);
+    view.surface_uvw.push_back(Uvw(st, h, view.s_mid, view.mesial_sign));
+  }
+  return view;
+}
+
+ToothView ShellToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi, io::Jaw jaw,
+                         const std::vector<std::int32_t>& triangles) {
+  ToothView view;
+  view.fdi = fdi;
+  view.jaw = jaw;
+  view.whole_crown = true;
+  view.mesial_sign = MesialSign(fdi);
+  view.top = RasterizeTop(mesh, triangles, g.axes, g.top.cell);
+  std::vector<double> s;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (view.top.Filled(c)) s.push_back(g.curve.Project(view.top.Centre(c)).s);
+  }
+  view.s_mid = 0.5 * (Quantile(s, 0.01) + Quantile(s, 0.99));
+  FillTop(g, &view);
+  std::vector<char> used(mesh.num_vertices(), 0);
+  for (const std::int32_t t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(mesh.triangles[static_cast<std::size_t>(t)][k]);
+      if (used[v]) continue;
+      used[v] = 1;
+      view.surface_J.push_back(mesh.vertices[v]);
+      view.surface_uvw.push_back(
+          Uvw(g.vertex_st[v], g.axes.Height(mesh.vertices[v]), view.s_mid, view.mesial_sign));
+    }
+  }
+  return view;
+}
+
+}  // namespace occlude::analysis
