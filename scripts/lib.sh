@@ -11,6 +11,7 @@ OCCLUDE_PACKAGES=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev
+  libjs-three
 )
 
 occlude_install_deps() {
