@@ -195,7 +195,21 @@ struct TripleHash {
   }
 };
 
-// The surviving triangles on the representatives, duplicates dropped, vertices renumbered.
+// Whether triangle t, moved onto the representatives of its clusters `ids`, faces against
+// its original orientation (a fold, which would show dark in shading) or degenerates.
+bool TurnsOver(const TriangleMesh& mesh, std::size_t t, const std::array<std::int32_t, 3>& ids,
+               const std::vector<std::int32_t>& rep) {
+  const auto at = [&](int k) -> const Eigen::Vector3d& {
+    return mesh.vertices[static_cast<std::size_t>(rep[static_cast<std::size_t>(ids[k])])];
+  };
+  const Eigen::Vector3d moved = (at(1) - at(0)).cross(at(2) - at(0));
+  const Eigen::Vector3d original =
+      (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+  return !(moved.dot(original) > 0.0);
+}
+
+// The surviving triangles on the representatives (folds and duplicates dropped), vertices
+// renumbered.
 DecimationResult Collapse(const TriangleMesh& mesh, const Clusters& c) {
   const std::vector<std::int32_t> rep = Representatives(mesh, c);
   DecimationResult out;
@@ -208,7 +222,10 @@ DecimationResult Collapse(const TriangleMesh& mesh, const Clusters& c) {
       ids[k] = c.of_vertex[static_cast<std::size_t>(mesh.triangles[t][k])];
     std::array<std::int32_t, 3> sorted = ids;
     std::sort(sorted.begin(), sorted.end());
-    if (sorted[0] == sorted[1] || sorted[1] == sorted[2] || !kept.insert(sorted).second) continue;
+    if (sorted[0] == sorted[1] || sorted[1] == sorted[2] || TurnsOver(mesh, t, ids, rep) ||
+        !kept.insert(sorted).second) {
+      continue;
+    }
     Eigen::Vector3i tri;
     for (int k = 0; k < 3; ++k) {
       std::int32_t& i = index[static_cast<std::size_t>(ids[k])];

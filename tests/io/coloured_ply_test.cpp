@@ -18,16 +18,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadBytes(const fs::path& file) {
+std::string PlyFileBytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // A box with float-representable corners and values that exercise every byte.
-struct Fixture {
+struct ColouredBox {
   TriangleMesh mesh = test::MakeBox({-1.5, 2.25, 0.5}, {8.5, 12.0, 7.75});
   VertexValues values;
-  Fixture() {
+  ColouredBox() {
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
       const auto b = static_cast<std::uint8_t>(37 * v);
       values.rgb.push_back({b, static_cast<std::uint8_t>(255 - b), static_cast<std::uint8_t>(v)});
@@ -66,7 +66,7 @@ std::vector<std::string> ExpectedHeader(const char* format, const TriangleMesh& 
 }
 
 template <typename T>
-T Get(const std::string& body, std::size_t* at) {
+T ReadLittleEndian(const std::string& body, std::size_t* at) {
   T value;
   std::memcpy(&value, body.data() + *at, sizeof value);  // the test host is little-endian
   *at += sizeof value;
@@ -74,18 +74,18 @@ T Get(const std::string& body, std::size_t* at) {
 }
 
 TEST(ColouredPlyTest, HeaderListsThePropertiesInTheOrderOtherToolsExpect) {
-  const Fixture f;
+  const ColouredBox f;
   test::TempDir dir;
   WriteColouredPly(f.mesh, f.values, dir / "m.ply");
   WriteColouredPly(f.mesh, f.values, dir / "a.ply", PlyEncoding::kAscii);
   std::string body;
-  EXPECT_EQ(HeaderLines(ReadBytes(dir / "m.ply"), &body),
+  EXPECT_EQ(HeaderLines(PlyFileBytes(dir / "m.ply"), &body),
             ExpectedHeader("binary_little_endian", f.mesh));
-  EXPECT_EQ(HeaderLines(ReadBytes(dir / "a.ply"), &body), ExpectedHeader("ascii", f.mesh));
+  EXPECT_EQ(HeaderLines(PlyFileBytes(dir / "a.ply"), &body), ExpectedHeader("ascii", f.mesh));
 }
 
 TEST(ColouredPlyTest, GeometryReadsBackThroughTheProjectsPlyReader) {
-  const Fixture f;
+  const ColouredBox f;
   test::TempDir dir;
   for (const PlyEncoding encoding : {PlyEncoding::kBinaryLittleEndian, PlyEncoding::kAscii}) {
     WriteColouredPly(f.mesh, f.values, dir / "m.ply", encoding);
@@ -99,32 +99,34 @@ TEST(ColouredPlyTest, GeometryReadsBackThroughTheProjectsPlyReader) {
 }
 
 TEST(ColouredPlyTest, BinaryColoursDistancesAndFacesRoundTrip) {
-  const Fixture f;
+  const ColouredBox f;
   test::TempDir dir;
   WriteColouredPly(f.mesh, f.values, dir / "m.ply");
   std::string body;
-  HeaderLines(ReadBytes(dir / "m.ply"), &body);
+  HeaderLines(PlyFileBytes(dir / "m.ply"), &body);
   ASSERT_EQ(body.size(), 19 * f.mesh.num_vertices() + 13 * f.mesh.num_triangles());
   std::size_t at = 0;
   for (std::size_t v = 0; v < f.mesh.num_vertices(); ++v) {
     for (int k = 0; k < 3; ++k) {
-      EXPECT_EQ(Get<float>(body, &at), static_cast<float>(f.mesh.vertices[v][k]));
+      EXPECT_EQ(ReadLittleEndian<float>(body, &at), static_cast<float>(f.mesh.vertices[v][k]));
     }
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(Get<std::uint8_t>(body, &at), f.values.rgb[v][k]);
-    EXPECT_EQ(Get<float>(body, &at), f.values.distance_mm[v]);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(ReadLittleEndian<std::uint8_t>(body, &at), f.values.rgb[v][k]);
+    EXPECT_EQ(ReadLittleEndian<float>(body, &at), f.values.distance_mm[v]);
   }
   for (std::size_t t = 0; t < f.mesh.num_triangles(); ++t) {
-    EXPECT_EQ(Get<std::uint8_t>(body, &at), 3);
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(Get<std::int32_t>(body, &at), f.mesh.triangles[t][k]);
+    EXPECT_EQ(ReadLittleEndian<std::uint8_t>(body, &at), 3);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(ReadLittleEndian<std::int32_t>(body, &at), f.mesh.triangles[t][k]);
   }
 }
 
 TEST(ColouredPlyTest, AsciiColoursAndDistancesRoundTrip) {
-  const Fixture f;
+  const ColouredBox f;
   test::TempDir dir;
   WriteColouredPly(f.mesh, f.values, dir / "m.ply", PlyEncoding::kAscii);
   std::string body;
-  HeaderLines(ReadBytes(dir / "m.ply"), &body);
+  HeaderLines(PlyFileBytes(dir / "m.ply"), &body);
   std::istringstream in(body);
   for (std::size_t v = 0; v < f.mesh.num_vertices(); ++v) {
     float x, y, z, d;
@@ -147,11 +149,11 @@ TEST(ColouredPlyTest, AsciiColoursAndDistancesRoundTrip) {
 TEST(ColouredPlyTest, BadValuesNameTheFileAndWriteNothing) {
   test::TempDir dir;
   const fs::path file = dir / "m.ply";
-  Fixture short_colours;
+  ColouredBox short_colours;
   short_colours.values.rgb.pop_back();
-  Fixture nan_distance;
+  ColouredBox nan_distance;
   nan_distance.values.distance_mm[2] = std::nanf("");
-  for (const Fixture* f : {&short_colours, &nan_distance}) {
+  for (const ColouredBox* f : {&short_colours, &nan_distance}) {
     try {
       WriteColouredPly(f->mesh, f->values, file);
       ADD_FAILURE() << "no error";
@@ -161,7 +163,8 @@ TEST(ColouredPlyTest, BadValuesNameTheFileAndWriteNothing) {
     }
     EXPECT_FALSE(fs::exists(file));
   }
-  EXPECT_THROW(WriteColouredPly(Fixture().mesh, Fixture().values, dir / "no" / "m.ply"), MeshError);
+  EXPECT_THROW(WriteColouredPly(ColouredBox().mesh, ColouredBox().values, dir / "no" / "m.ply"),
+               MeshError);
 }
 
 }  // namespace

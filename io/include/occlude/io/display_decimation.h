@@ -9,7 +9,9 @@
 // planes of the triangles around the cell (least area-weighted squared plane
 // distance, ties to the cell's area-weighted centroid, then the lowest index).
 // A triangle whose corners fall in three different cells survives, with its
-// corner order and part; duplicates (the same three kept vertices) are dropped.
+// corner order and part, unless it would turn over (its normal against the
+// original's: a fold, dark in shading); duplicates (the same three kept
+// vertices) are dropped.
 //
 // Guarantee: every point of the result lies within `error_bound_mm` = sqrt(3) h
 // (the cell diagonal) of the original surface, since each kept corner is an
