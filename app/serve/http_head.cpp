@@ -66,6 +66,7 @@ HeadStatus ParseHttpHead(std::string_view bytes, std::size_t max_bytes, HttpHead
 std::string HttpResponse(int status, std::string_view content_type, std::string_view body,
                          bool head_only) {
   const char* reason = status == 200   ? "OK"
+                       : status == 204 ? "No Content"
                        : status == 400 ? "Bad Request"
                        : status == 404 ? "Not Found"
                        : status == 405 ? "Method Not Allowed"

@@ -221,6 +221,8 @@ void LiveServer::Impl::Respond(Connection& c, const HttpHead& head, Clock::time_
   if (head.path == "/" || head.path == "/index.html") {
     std::lock_guard<std::mutex> lock(mutex);
     c.out = serve_detail::HttpResponse(200, "text/html; charset=utf-8", page, head_only);
+  } else if (head.path == "/favicon.ico") {  // browsers ask; no icon, and no error in the console
+    c.out = serve_detail::HttpResponse(204, "image/x-icon", "", head_only);
   } else if (head.path == "/events" && !head_only) {
     std::lock_guard<std::mutex> lock(mutex);
     c.out = serve_detail::EventStreamHead() + "retry: 1000\n\n" + last_event;

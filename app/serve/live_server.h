@@ -1,7 +1,8 @@
 // A minimal local HTTP server for the live pages (`refine --watch --serve`): it
 // serves one HTML page at "/" and pushes events to every open page as
-// server-sent events at "/events" (EventSource in the page). Nothing else: GET
-// and HEAD only, one response per connection except the event streams.
+// server-sent events at "/events" (EventSource in the page). Nothing else (an
+// empty answer for /favicon.ico, 404 for any other path): GET and HEAD only, one
+// response per connection except the event streams.
 //
 // Safety: binds 127.0.0.1 by default and refuses any address outside 127.0.0.0/8
 // unless the caller allows it explicitly and gives a warning sink (the page shows

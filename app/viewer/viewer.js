@@ -12,9 +12,12 @@
   var data = JSON.parse(document.getElementById('occlude-viewer-data').textContent);
   var el = function (id) { return document.getElementById('occlude-viewer-' + id); };
   var state = { proposal: 0, view: 'oblique', upper: 'solid', lower: true, pick: null };
+  // performance.now() (ms from the navigation's start) at each step of the first draw.
+  var timings = { page: window.occludeViewerStart, script: performance.now() };
 
   // --- data ------------------------------------------------------------------------------
   function bytes(b64) {
+    if (Uint8Array.fromBase64) return Uint8Array.fromBase64(b64);  // native where there is one
     var s = atob(b64), out = new Uint8Array(s.length);
     for (var i = 0; i < s.length; i++) out[i] = s.charCodeAt(i);
     return out;
@@ -49,7 +52,23 @@
   }
 
   // --- scene -----------------------------------------------------------------------------
-  var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true,
+  // The WebGL renderer's name; software ones (SwiftShader, llvmpipe: no GPU) draw
+  // multisampling on the CPU, so the page does without it there.
+  function probeRenderer() {
+    try {
+      var probe = document.createElement('canvas').getContext('webgl');
+      var info = probe && probe.getExtension('WEBGL_debug_renderer_info');
+      var name = info ? String(probe.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+      var lose = probe && probe.getExtension('WEBGL_lose_context');
+      if (lose) lose.loseContext();
+      return name;
+    } catch (e) {
+      return '';
+    }
+  }
+  var rendererInfo = probeRenderer();
+  var software = /SwiftShader|llvmpipe|software/i.test(rendererInfo);
+  var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: !software,
                                            preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(BACKGROUND, 1);
@@ -64,10 +83,10 @@
   var proposals = data.proposals.map(function (p) {
     return { lower: decodeSurface(p.lower), upper: decodeSurface(p.upper) };
   });
+  timings.decoded = performance.now();
   var meshes = jaws.map(function (jaw, i) {
-    var m = new THREE.Mesh(jaw.geometry, new THREE.MeshPhongMaterial({
-      vertexColors: THREE.VertexColors, side: THREE.DoubleSide, shininess: 18,
-      specular: 0x1a1a1a }));
+    var m = new THREE.Mesh(jaw.geometry, new THREE.MeshLambertMaterial({
+      vertexColors: THREE.VertexColors, side: THREE.DoubleSide }));
     m.userData.jaw = i;
     scene.add(m);
     return m;
@@ -84,7 +103,8 @@
     axes[k] = new THREE.Vector3().fromArray(data.axes[k]);
   });
 
-  function render() { renderer.render(scene, camera); }
+  var live = false;  // no drawing until the scene is set up (one first frame, not several)
+  function render() { if (live) renderer.render(scene, camera); }
   function resize() {
     var w = Math.max(canvas.clientWidth, 1), h = Math.max(canvas.clientHeight, 1);
     renderer.setSize(w, h, false);
@@ -138,8 +158,8 @@
   }
   var VIEWS = {
     oblique: function () {
-      return [axes.anterior.clone().addScaledVector(axes.occlusal, 0.7)
-                .addScaledVector(axes.lateral, -0.5), axes.occlusal];
+      return [axes.anterior.clone().addScaledVector(axes.occlusal, 0.35)
+                .addScaledVector(axes.lateral, -0.6), axes.occlusal];
     },
     'occlusal-lower': function () { return [axes.occlusal, axes.anterior]; },
     'occlusal-upper': function () { return [axes.occlusal.clone().negate(), axes.anterior]; },
@@ -154,7 +174,7 @@
     else if (name === 'occlusal-upper') { setLowerVisible(false); setUpperMode('solid'); }
     else { setLowerVisible(true); if (state.upper === 'hidden') setUpperMode('solid'); }
     var dirUp = VIEWS[name](), s = bounds();
-    var dist = s.radius / Math.sin(THREE.Math.degToRad(camera.fov / 2)) * 1.05;
+    var dist = s.radius / Math.sin(THREE.Math.degToRad(camera.fov / 2)) * 0.8;
     camera.near = dist / 50;
     camera.far = dist * 4;
     camera.up.copy(dirUp[1]).normalize();
@@ -319,7 +339,8 @@
                pick: state.pick ? state.pick.result : null,
                canvas: [canvas.width, canvas.height],
                triangles: data.jaws.map(function (j) { return j.triangles; }),
-               errors: (window.occludeViewerErrors || []).slice() };
+               errors: (window.occludeViewerErrors || []).slice(), timings: timings,
+               renderer: rendererInfo, antialias: !software };
     }
   };
 
@@ -328,9 +349,13 @@
   resize();
   setProposal(0);
   setView('oblique');
+  timings.scene = performance.now();
+  live = true;
+  render();
   var gl = renderer.getContext();
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // the frame is done
-  document.body.dataset.viewerFirstDrawMs = String(Math.round(performance.now()));
+  timings.first_draw = performance.now();
+  document.body.dataset.viewerFirstDrawMs = String(Math.round(timings.first_draw));
   document.body.dataset.viewerReady = '1';
   el('status').textContent = 'Drag to turn, scroll to zoom, right-drag to pan; click a surface ' +
     'to read the gap there.';

@@ -11,7 +11,7 @@ namespace {
 
 // Counts what window.onerror catches (before any other script runs), for tests and tools.
 constexpr const char* kErrorCounter =
-    "window.occludeViewerErrors=[];"
+    "window.occludeViewerStart=performance.now();window.occludeViewerErrors=[];"
     "window.addEventListener('error',function(e){occludeViewerErrors.push(String(e.message)+"
     "' at '+e.lineno+':'+e.colno);document.body.dataset.viewerErrors=String("
     "occludeViewerErrors.length);});"

@@ -84,6 +84,9 @@ TEST(LiveServerTest, ServesThePageAndRefusesOtherPathsAndMethods) {
   EXPECT_NE(page.find("Content-Type: text/html; charset=utf-8\r\n"), std::string::npos);
   EXPECT_EQ(page.substr(page.find("\r\n\r\n") + 4), "<!DOCTYPE html><p>live</p>");
   EXPECT_TRUE(get.closed());
+  Client icon(server.port());
+  icon.Send("GET /favicon.ico HTTP/1.1\r\n\r\n");
+  EXPECT_EQ(icon.ReadAll().rfind("HTTP/1.1 204 No Content\r\n", 0), 0u);
   Client missing(server.port());
   missing.Send("GET /secret.stl HTTP/1.1\r\n\r\n");
   EXPECT_EQ(missing.ReadAll().rfind("HTTP/1.1 404", 0), 0u);

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -82,8 +83,8 @@ std::vector<std::string> HeadlessChromiumFlags() {
           "--disable-default-apps", "--disable-dev-shm-usage",
           // No host name resolves: without it Chromium looks up its update servers even
           // with --disable-background-networking and --disable-component-update.
-          "--host-resolver-rules=MAP * ~NOTFOUND", "--mute-audio", "--hide-scrollbars",
-          "--window-size=1200,900", "--remote-debugging-pipe"};
+          "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1", "--mute-audio",
+          "--hide-scrollbars", "--window-size=1200,900", "--remote-debugging-pipe"};
 }
 
 std::unique_ptr<HeadlessBrowser> HeadlessBrowser::Launch(std::string* why, double timeout_s) {
@@ -289,6 +290,23 @@ void HeadlessBrowser::Click(double x, double y) {
 
 std::string HeadlessBrowser::Screenshot() {
   return DecodeBase64(Call("Page.captureScreenshot", {{"format", "png"}}, 60).at("data"));
+}
+
+double HeadlessBrowser::CpuSeconds() const {
+  double ticks = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;  // not a process
+    std::ifstream in(entry.path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t name_end = stat.rfind(')');  // the command name may hold spaces
+    if (name_end == std::string::npos) continue;
+    std::istringstream fields(stat.substr(name_end + 2));
+    std::vector<std::string> f((std::istream_iterator<std::string>(fields)), {});
+    // After the name: state ppid pgrp ... utime (11th) stime (12th).
+    if (f.size() > 12 && std::stol(f[2]) == pid_) ticks += std::stod(f[11]) + std::stod(f[12]);
+  }
+  return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
 std::string DecodeBase64(const std::string& text) {

@@ -43,6 +43,10 @@ class HeadlessBrowser {
   /// PNG bytes of the viewport.
   std::string Screenshot();
 
+  /// CPU seconds (user + system) used so far by the browser's processes that are still
+  /// running (its process group, read from /proc); for measurements on a shared machine.
+  double CpuSeconds() const;
+
   /// Console errors and uncaught exceptions reported since the last Navigate.
   const std::vector<std::string>& Errors() const { return errors_; }
   /// URLs the page requested since the last Navigate (the page's own included).
