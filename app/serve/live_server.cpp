@@ -272,9 +272,14 @@ void LiveServer::Impl::Deliver() {
   if (events.empty()) return;
   for (Connection& c : connections) {
     if (!c.streaming || c.dead) continue;
+    // Unread bytes from earlier events beyond the limit: the client does not read. (Checked
+    // before the new events, so one event larger than the limit still goes to a reader.)
+    if (c.out.size() > options.max_stream_backlog_bytes) {
+      c.dead = true;
+      continue;
+    }
     for (const std::string& e : events) c.out += e;
-    if (c.out.size() > options.max_stream_backlog_bytes) c.dead = true;  // it does not read
-    if (!c.dead) WriteTo(c);
+    WriteTo(c);
   }
 }
 

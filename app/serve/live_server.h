@@ -34,7 +34,8 @@ struct LiveServerOptions {
   std::size_t max_request_bytes = 8192;  ///< request line, headers and body at most
   std::size_t max_clients = 32;          ///< open connections at most; more get 503
   double keepalive_s = 15.0;             ///< a comment line on idle event streams this often
-  std::size_t max_stream_backlog_bytes = 1 << 20;  ///< unread event bytes before a drop
+  /// Unread event bytes on a stream beyond which it is dropped at the next Publish.
+  std::size_t max_stream_backlog_bytes = 1 << 20;
 };
 
 class LiveServer {

@@ -273,7 +273,8 @@
     el('pen-label').textContent = 'penetration deeper than ' + sc.penetration_from_mm + ' mm';
     el('far-label').textContent = 'farther than ' + sc.max_mm + ' mm';
   }
-  function buildControls() {
+  function buildProposalButtons() {
+    el('proposals').textContent = '';
     data.proposals.forEach(function (p, i) {
       var b = document.createElement('button');
       b.type = 'button';
@@ -281,6 +282,9 @@
       b.addEventListener('click', function () { setProposal(i); });
       el('proposals').appendChild(b);
     });
+  }
+  function buildControls() {
+    buildProposalButtons();
     var views = root.querySelectorAll('[data-view]');
     for (var i = 0; i < views.length; i++) {
       views[i].addEventListener('click', function (e) { setView(e.target.dataset.view); });
@@ -296,6 +300,33 @@
     });
     controls.addEventListener('change', render);
     window.addEventListener('resize', function () { resize(); render(); });
+  }
+
+  // --- live pages: proposals pushed as server-sent events (viewer_page.h) ----------------
+  function receiveProposal(p) {
+    var i = 0;
+    while (i < data.proposals.length && data.proposals[i].label !== p.label) i++;
+    data.proposals[i] = p;
+    proposals[i] = { lower: decodeSurface(p.lower), upper: decodeSurface(p.upper) };
+    buildProposalButtons();
+    setProposal(i);
+    var gl = renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // the frame is done
+    document.body.dataset.viewerUpdates = String(Number(document.body.dataset.viewerUpdates) + 1);
+    document.body.dataset.viewerUpdatedAt = String(Date.now());
+  }
+  function listen(path) {
+    document.body.dataset.viewerUpdates = '0';
+    var source = new EventSource(path);
+    source.onopen = function () {
+      document.body.dataset.viewerLive = 'open';
+      el('status').textContent = 'Live: each new refinement is shown here as it arrives.';
+    };
+    source.onerror = function () {  // the server stopped (it retries while it can)
+      document.body.dataset.viewerLive = 'closed';
+      el('status').textContent = 'The live refinement stopped; this page keeps the last pose.';
+    };
+    source.addEventListener('proposal', function (e) { receiveProposal(JSON.parse(e.data)); });
   }
 
   // --- for tests and tools ---------------------------------------------------------------
@@ -359,4 +390,5 @@
   document.body.dataset.viewerReady = '1';
   el('status').textContent = 'Drag to turn, scroll to zoom, right-drag to pan; click a surface ' +
     'to read the gap there.';
+  if (data.live) listen(data.live);
 })();

@@ -129,9 +129,13 @@ void CheckDistances(const std::string& field, const std::vector<float>& d, std::
   }
 }
 
-json Proposal(const ViewerInputs& in, std::size_t i) {
-  const ViewerProposal& p = in.proposals[i];
-  const std::string field = "proposals[" + std::to_string(i) + "]";
+void CheckMeshesAndScale(const ViewerInputs& in) {
+  CheckMesh("lower_L", in.lower_L);
+  CheckMesh("upper_U", in.upper_U);
+  if (!(in.scale.max_mm > 0.0)) Bad("scale.max_mm", "must be positive");
+}
+
+json Proposal(const ViewerInputs& in, const ViewerProposal& p, const std::string& field) {
   CheckDistances(field + ".lower_distance_mm", p.lower_distance_mm, in.lower_L->num_vertices());
   CheckDistances(field + ".upper_distance_mm", p.upper_distance_mm, in.upper_U->num_vertices());
   if (!p.X_LU.matrix().allFinite()) Bad(field + ".X_LU", "the pose is not finite");
@@ -154,12 +158,18 @@ std::int16_t DistanceCode(float d_mm) {
 }
 
 std::string ViewerDataJson(const ViewerInputs& in) {
-  CheckMesh("lower_L", in.lower_L);
-  CheckMesh("upper_U", in.upper_U);
+  CheckMeshesAndScale(in);
   if (in.proposals.empty()) Bad("proposals", "give at least one pose to show");
-  if (!(in.scale.max_mm > 0.0)) Bad("scale.max_mm", "must be positive");
+  const std::string& live = in.live_events_path;
+  if (!live.empty() && (live[0] != '/' || live.rfind("//", 0) == 0)) {
+    Bad("live_events_path", "\"" + live +
+                                "\" is not a path on the page's server; give one "
+                                "starting with a single '/', e.g. \"/events\"");
+  }
   json proposals = json::array();
-  for (std::size_t i = 0; i < in.proposals.size(); ++i) proposals.push_back(Proposal(in, i));
+  for (std::size_t i = 0; i < in.proposals.size(); ++i) {
+    proposals.push_back(Proposal(in, in.proposals[i], "proposals[" + std::to_string(i) + "]"));
+  }
   const json data = {{"title", in.title},
                      {"axes",
                       {{"occlusal", Vec(in.axes.occlusal_L.normalized())},
@@ -167,8 +177,14 @@ std::string ViewerDataJson(const ViewerInputs& in) {
                        {"lateral", Vec(in.axes.lateral_L.normalized())}}},
                      {"scale", Scale(in.scale)},
                      {"jaws", {Jaw("lower", "L", *in.lower_L), Jaw("upper", "U", *in.upper_U)}},
-                     {"proposals", proposals}};
+                     {"proposals", proposals},
+                     {"live", in.live_events_path.empty() ? json() : json(in.live_events_path)}};
   return data.dump(-1, ' ', false, json::error_handler_t::replace);  // bad UTF-8 in names: U+FFFD
+}
+
+std::string ProposalJson(const ViewerInputs& in, const ViewerProposal& proposal) {
+  CheckMeshesAndScale(in);
+  return Proposal(in, proposal, "proposal").dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace occlude::app::viewer_detail

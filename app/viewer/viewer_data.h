@@ -11,7 +11,8 @@
 //              index: {type: "uint16"|"uint32", data: 3T},
 //              part: {type: "uint8"|"uint16", data: T}, parts: [{name, universal, fdi}]},
 //    "proposals": [{label, X_LU: 16 numbers column-major, numbers: {...},
-//                   lower: {distance_um: int16 V, colour: uint8 3V}, upper: {...}}]}
+//                   lower: {distance_um: int16 V, colour: uint8 3V}, upper: {...}}],
+//    "live": null | the path of the event stream of `proposal` events (one proposal each)}
 // distance_um saturates at +-32766; 32767 = farther than 32.766 mm or out of reach.
 #pragma once
 
@@ -29,6 +30,9 @@ inline constexpr std::int16_t kDistanceMaxCode = 32766;
 /// Checks `inputs` (throws std::invalid_argument naming the field) and returns the
 /// data object's JSON text (not yet made script-safe).
 std::string ViewerDataJson(const ViewerInputs& inputs);
+
+/// One proposal's JSON text in the layout of "proposals" (checked like ViewerDataJson).
+std::string ProposalJson(const ViewerInputs& inputs, const ViewerProposal& proposal);
 
 /// The distance code of d mm (see above).
 std::int16_t DistanceCode(float d_mm);

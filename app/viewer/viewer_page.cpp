@@ -75,4 +75,8 @@ std::string ViewerPage(const ViewerInputs& inputs) {
          section + "</body></html>\n";
 }
 
+std::string ViewerProposalEvent(const ViewerInputs& inputs, const ViewerProposal& proposal) {
+  return viewer_detail::ProposalJson(inputs, proposal);
+}
+
 }  // namespace occlude::app

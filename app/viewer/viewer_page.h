@@ -17,6 +17,13 @@
 // drawnPixels() (reads the canvas back: {drawn, total, checksum}), pickAt(x, y)
 // (canvas pixels from the top left: what a click there reads) and state().
 // One viewer per page (its element ids are fixed).
+//
+// Live pages (ViewerInputs::live_events_path, served by serve/live_server.h): the page
+// listens on that same-origin event stream for `proposal` events whose data is
+// ViewerProposalEvent(); a proposal with a label already listed replaces it, another
+// is added; either is shown at once. It sets dataset.viewerLive ("open" while the
+// stream is connected, "closed" after), viewerUpdates (proposals received) and
+// viewerUpdatedAt (Date.now() in ms when the new proposal's frame was drawn).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -55,6 +62,8 @@ struct ViewerInputs {
   ContactScale scale;
   std::vector<ViewerProposal> proposals;  ///< at least one; the first is shown first
   std::string title = "Jaws at the pose";
+  /// Empty: a still page. Else the path of the event stream to listen on, e.g. "/events".
+  std::string live_events_path;
 };
 
 /// A <section> holding the style, the data and the scripts (three.js included), to
@@ -65,5 +74,10 @@ std::string ViewerSection(const ViewerInputs& inputs);
 
 /// A whole HTML document around ViewerSection. Same errors.
 std::string ViewerPage(const ViewerInputs& inputs);
+
+/// The data of a `proposal` event for a live page made from `inputs` (its display
+/// meshes and scale): `proposal` as one line of JSON. Same errors as ViewerSection
+/// for the meshes, the scale and the proposal's fields (named "proposal.<field>").
+std::string ViewerProposalEvent(const ViewerInputs& inputs, const ViewerProposal& proposal);
 
 }  // namespace occlude::app

@@ -117,6 +117,30 @@ TEST(LiveServerTest, APublishedEventReachesAnOpenStreamAndALateOneGetsTheLast) {
   EXPECT_THROW(server.Publish("two\nlines", "x"), std::invalid_argument);
 }
 
+TEST(LiveServerTest, AnEventLargerThanTheBacklogLimitReachesAReaderAndANonReaderIsDropped) {
+  LiveServerOptions o;
+  o.max_stream_backlog_bytes = 64 * 1024;
+  LiveServer server(o);
+  const std::string big(1 << 20, 'x');  // one display proposal of a real case is about this size
+  {
+    Client reader(server.port());
+    reader.Send("GET /events HTTP/1.1\r\n\r\n");
+    ASSERT_TRUE(WaitForClients(server, 1));
+    server.Publish("proposal", big + "end");
+    EXPECT_NE(reader.ReadUntil("xend\n\n").find("data: " + big + "end\n\n"), std::string::npos);
+  }
+  ASSERT_TRUE(WaitForClients(server, 0));
+  Client idle(server.port());
+  idle.Send("GET /events HTTP/1.1\r\n\r\n");
+  ASSERT_TRUE(WaitForClients(server, 1));
+  // It never reads: once the kernel's buffers are full its backlog grows and it is dropped.
+  for (int i = 0; i < 200 && server.clients() == 1; ++i) {
+    server.Publish("proposal", big);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(WaitForClients(server, 0));
+}
+
 TEST(LiveServerTest, NonLoopbackAddressesAreRefusedUnlessAllowedWithAWarning) {
   for (const char* address : {"0.0.0.0", "192.168.1.20", "10.0.0.1"}) {
     LiveServerOptions o;

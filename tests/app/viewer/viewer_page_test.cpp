@@ -170,6 +170,30 @@ TEST(ViewerPageTest, BadInputsNameTheirField) {
   expect_error(not_json, "proposals[1].numbers_json");
 }
 
+TEST(ViewerPageTest, ALivePageNamesItsStreamAndAProposalEventIsTheProposalsData) {
+  const test::ViewerFixture& f = Fixture();
+  EXPECT_TRUE(PageData(ViewerSection(f.inputs))["live"].is_null());
+  ViewerInputs live = f.inputs;
+  live.live_events_path = "/events";
+  const json data = PageData(ViewerSection(live));
+  EXPECT_EQ(data["live"], "/events");
+  const std::string event = ViewerProposalEvent(live, live.proposals[1]);
+  EXPECT_EQ(event.find('\n'), std::string::npos);  // one data: line
+  EXPECT_EQ(json::parse(event), data["proposals"][1]);
+  for (const char* bad : {"events", "//elsewhere.example/events", "http://x/events"}) {
+    live.live_events_path = bad;
+    try {
+      ViewerSection(live);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("live_events_path:", 0), 0u) << e.what();
+    }
+  }
+  ViewerProposal short_distances = f.inputs.proposals[0];
+  short_distances.lower_distance_mm.pop_back();
+  EXPECT_THROW(ViewerProposalEvent(f.inputs, short_distances), std::invalid_argument);
+}
+
 TEST(ContactColourTest, IsTheReportsRampAtEveryMicrometre) {
   const render::MapScale report;
   const ContactScale viewer;
