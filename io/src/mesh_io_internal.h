@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,12 @@
 #include "occlude/io/triangle_mesh.h"
 
 namespace occlude::io::detail {
+
+// Binary STL layout, shared by the reader and the writer: an 80-byte header, a uint32 triangle
+// count, then per triangle a 50-byte record (normal, 3 vertices: 12 floats, a uint16).
+constexpr std::size_t kStlHeaderBytes = 80;
+constexpr std::size_t kStlPreambleBytes = kStlHeaderBytes + 4;
+constexpr std::size_t kStlRecordBytes = 50;
 
 /// Triangles as a format reader delivers them: file units, file corner order,
 /// not yet checked for finiteness (except where the reader says so) nor welded.

@@ -16,8 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::size_t kPreambleBytes = 84;  // 80-byte header + uint32 triangle count
-constexpr std::size_t kRecordBytes = 50;    // normal, 3 vertices (12 floats), uint16
 constexpr std::size_t kTextProbeBytes = 1024;
 
 std::uint32_t ReadU32(const char* p) {
@@ -57,10 +55,10 @@ bool StartsWithSolid(std::string_view bytes) {
 bool RecordsLookPlausible(std::string_view bytes) {
   constexpr double kAbsurd = 1e7;
   constexpr std::size_t kProbeRecords = 64;
-  const std::size_t present = (bytes.size() - kPreambleBytes) / kRecordBytes;
+  const std::size_t present = (bytes.size() - kStlPreambleBytes) / kStlRecordBytes;
   if (present == 0) return false;
   for (std::size_t t = 0; t < std::min(present, kProbeRecords); ++t) {
-    const char* record = bytes.data() + kPreambleBytes + t * kRecordBytes;
+    const char* record = bytes.data() + kStlPreambleBytes + t * kStlRecordBytes;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d v = ReadVertex(record + 12 + 12 * k);
       if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kAbsurd) return false;
@@ -71,7 +69,7 @@ bool RecordsLookPlausible(std::string_view bytes) {
 
 [[noreturn]] void FailSizeMismatch(const fs::path& file, std::string_view bytes) {
   const std::uint64_t count = ReadU32(bytes.data() + 80);
-  const std::uint64_t expected = kPreambleBytes + kRecordBytes * count;
+  const std::uint64_t expected = kStlPreambleBytes + kStlRecordBytes * count;
   const std::uint64_t size = bytes.size();
   std::string what = "binary STL header says " + std::to_string(count) +
                      " triangles, which needs " + std::to_string(expected) +
@@ -80,8 +78,8 @@ bool RecordsLookPlausible(std::string_view bytes) {
     what += "the data does not look like STL triangles either: this is not an STL file";
   } else if (size < expected) {
     what += "the file is truncated (or its header count is wrong): export or copy it again";
-  } else if ((size - kPreambleBytes) % kRecordBytes == 0) {
-    what += "the size fits " + std::to_string((size - kPreambleBytes) / kRecordBytes) +
+  } else if ((size - kStlPreambleBytes) % kStlRecordBytes == 0) {
+    what += "the size fits " + std::to_string((size - kStlPreambleBytes) / kStlRecordBytes) +
             " triangles, so the header count is wrong: export the mesh again";
   } else {
     what += "the file is corrupt: export it again";
@@ -96,7 +94,7 @@ RawMesh ReadBinaryStl(const fs::path& file, std::string_view bytes) {
   raw.positions.reserve(3 * count);  // backed by the file size, checked by the caller
   raw.triangles.reserve(count);
   for (std::size_t t = 0; t < count; ++t) {
-    const char* record = bytes.data() + kPreambleBytes + t * kRecordBytes;
+    const char* record = bytes.data() + kStlPreambleBytes + t * kStlRecordBytes;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d v = ReadVertex(record + 12 + 12 * k);
       if (!v.allFinite()) {
@@ -215,16 +213,17 @@ class AsciiStlReader {
 }  // namespace
 
 RawMesh ReadStl(const fs::path& file, std::string_view bytes) {
-  if (bytes.size() >= kPreambleBytes) {
+  if (bytes.size() >= kStlPreambleBytes) {
     const std::uint64_t count = ReadU32(bytes.data() + 80);
-    if (bytes.size() == kPreambleBytes + kRecordBytes * count) return ReadBinaryStl(file, bytes);
+    if (bytes.size() == kStlPreambleBytes + kStlRecordBytes * count)
+      return ReadBinaryStl(file, bytes);
   }
   const std::string_view text = WithoutUtf8Bom(bytes);
   if (StartsWithSolid(text) && LooksLikeText(text)) return AsciiStlReader(file, text).Read();
   if (LooksLikeText(bytes)) {
     Fail(file, "not an STL file: it is text but does not start with 'solid'");
   }
-  if (bytes.size() < kPreambleBytes) {
+  if (bytes.size() < kStlPreambleBytes) {
     Fail(file, "not an STL file: " + std::to_string(bytes.size()) +
                    " bytes is shorter than a binary STL header (84 bytes)");
   }

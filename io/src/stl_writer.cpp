@@ -52,9 +52,6 @@ void PutF32(float value, char* out) {
 
 namespace {
 
-constexpr std::size_t kHeaderBytes = 80;
-constexpr std::size_t kRecordBytes = 50;
-
 // Unit normal of triangle t from its corners (zero when degenerate).
 Eigen::Vector3d NormalOf(const TriangleMesh& mesh, std::size_t t) {
   const Eigen::Vector3d n =
@@ -72,7 +69,7 @@ std::string HeaderBytes(const std::string& header) {
   std::string_view trimmed = text;
   while (!trimmed.empty() && IsSpace(trimmed.front())) trimmed.remove_prefix(1);
   std::string out = StartsWithNoCase(trimmed, "solid") ? "binary " + header : header;
-  out.resize(kHeaderBytes, '\0');
+  out.resize(kStlHeaderBytes, '\0');
   return out;
 }
 
@@ -95,10 +92,10 @@ std::string EncodeBinaryStl(const TriangleMesh& mesh, const fs::path& file,
   }
   CheckFitsFloat(mesh, file, "binary STL");
   std::string out = HeaderBytes(header);
-  out.resize(kHeaderBytes + 4 + kRecordBytes * mesh.triangles.size(), '\0');
-  PutU32(static_cast<std::uint32_t>(mesh.triangles.size()), out.data() + kHeaderBytes);
+  out.resize(kStlPreambleBytes + kStlRecordBytes * mesh.triangles.size(), '\0');
+  PutU32(static_cast<std::uint32_t>(mesh.triangles.size()), out.data() + kStlHeaderBytes);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    char* record = out.data() + kHeaderBytes + 4 + kRecordBytes * t;
+    char* record = out.data() + kStlPreambleBytes + kStlRecordBytes * t;
     PutVector(NormalOf(mesh, t), record);
     for (int k = 0; k < 3; ++k) PutVector(mesh.corner(t, k), record + 12 + 12 * k);
     // The 2-byte attribute stays zero.
