@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 
 #include "headless_browser.h"
 #include "occlude/collision/closest_point.h"
@@ -66,6 +67,30 @@ TEST_F(ViewerBrowserTest, CanvasIsDrawnWithoutScriptErrors) {
   EXPECT_EQ(Js("occludeViewer.state().triangles"),
             json({fixture_->lower.mesh.num_triangles(), fixture_->upper.mesh.num_triangles()}));
   EXPECT_EQ(Js("document.querySelectorAll('#occlude-viewer-proposals button').length"), 3);
+}
+
+// The browser's own screenshot (not the page's readback): inside the canvas's box, the
+// pixels that differ from the page's background colour (0xf4f4f2) by more than a little.
+TEST_F(ViewerBrowserTest, TheScreenshotShowsTheJawsOnTheCanvas) {
+  const json box = Js(R"js((() => {
+      const r = document.getElementById('occlude-viewer-canvas').getBoundingClientRect();
+      return [Math.ceil(r.left), Math.ceil(r.top), Math.floor(r.width), Math.floor(r.height)];
+    })())js");
+  const std::string png = browser_->Screenshot();
+  const cv::Mat shot =
+      cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8U, const_cast<char*>(png.data())),
+                   cv::IMREAD_COLOR);
+  ASSERT_FALSE(shot.empty()) << "the screenshot is not a PNG";
+  const cv::Rect canvas(box[0], box[1], box[2], box[3]);
+  ASSERT_EQ(canvas & cv::Rect(0, 0, shot.cols, shot.rows), canvas) << box.dump();
+  int drawn = 0;
+  for (int y = canvas.y + 2; y < canvas.br().y - 2; ++y) {  // inside the canvas's border
+    for (int x = canvas.x + 2; x < canvas.br().x - 2; ++x) {
+      const cv::Vec3b bgr = shot.at<cv::Vec3b>(y, x);
+      drawn += std::abs(bgr[2] - 0xf4) + std::abs(bgr[1] - 0xf4) + std::abs(bgr[0] - 0xf2) > 6;
+    }
+  }
+  EXPECT_GT(drawn, kMinDrawnShare * canvas.area()) << drawn << " of " << canvas.area();
 }
 
 TEST_F(ViewerBrowserTest, SwitchingProposalsChangesPoseColoursAndNumbers) {

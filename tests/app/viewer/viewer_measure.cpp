@@ -7,9 +7,14 @@
 // frame, from the navigation's start) over --runs navigations, after a warm-up
 // page has started the browser's renderer and GPU processes (run 1 is then the
 // page's first load; later runs reuse the browser's compiled-code cache). --screenshots
-// also writes a PNG of each standard view beside the page.
+// also writes a PNG of each standard view beside the page. --live N then serves
+// the page with the first pose through app/serve (live_events_path) and pushes the
+// other poses N times, printing each push's latency: from before the event is
+// encoded here to the page's redraw done (Date.now() there against the system
+// clock here: one machine, one clock).
 //
-//   build/bin/app_viewer_measure examples/a-bite-3shape.toml --poses 3 --out /tmp/v
+//   build/bin/app_viewer_measure examples/a-bite-3shape.toml --poses 3 --out /tmp/v --live 5
+#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -19,6 +24,7 @@
 #include "headless_browser.h"
 #include "occlude/io/display_decimation.h"
 #include "report_analysis.h"
+#include "serve/live_server.h"
 #include "timing.h"
 #include "viewer/viewer_page.h"
 
@@ -34,6 +40,7 @@ struct Options {
   int runs = 3;
   fs::path out = "viewer-measure";
   bool screenshots = false;
+  int live_pushes = 0;
   std::string eval;  ///< a script expression to evaluate after the runs, printed as JSON
 };
 
@@ -52,6 +59,8 @@ Options Parse(int argc, char** argv) {
       o.out = next();
     } else if (a == "--screenshots") {
       o.screenshots = true;
+    } else if (a == "--live") {
+      o.live_pushes = std::stoi(next());
     } else if (a == "--eval") {
       o.eval = next();
     } else {
@@ -61,7 +70,7 @@ Options Parse(int argc, char** argv) {
   if (o.config.empty() || o.poses < 1 || o.poses > 3 || o.runs < 1) {
     throw std::invalid_argument(
         "usage: app_viewer_measure CONFIG [--poses 1..3] [--budget TRIANGLES] [--runs N] "
-        "[--out DIR] [--screenshots] [--eval EXPRESSION]");
+        "[--out DIR] [--screenshots] [--live PUSHES] [--eval EXPRESSION]");
   }
   return o;
 }
@@ -145,6 +154,44 @@ void Measure(const fs::path& page, const Options& o) {
   }
 }
 
+double SystemMs() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+void MeasureLive(ViewerInputs in, const Options& o) {
+  const std::vector<ViewerProposal> poses = in.proposals;
+  in.proposals.resize(1);
+  in.live_events_path = "/events";
+  LiveServer server({});
+  server.SetPage(ViewerPage(in));
+  std::string why;
+  auto browser = test::HeadlessBrowser::Launch(&why);
+  if (!browser) throw std::runtime_error("no headless browser: " + why);
+  browser->Navigate(server.url(), 120);
+  if (!browser->WaitFor("document.body.dataset.viewerReady === '1' && "
+                        "document.body.dataset.viewerLive === 'open'",
+                        120)) {
+    throw std::runtime_error("the live page did not draw or connect");
+  }
+  for (int k = 1; k <= o.live_pushes; ++k) {
+    ViewerProposal p = poses[static_cast<std::size_t>(k) % poses.size()];
+    p.label = "refined";
+    const double sent_ms = SystemMs(), cpu0 = ThreadCpuSeconds();
+    const std::string event = ViewerProposalEvent(in, p);
+    const double encode_s = ThreadCpuSeconds() - cpu0;
+    server.Publish("proposal", event);
+    const std::string done = "document.body.dataset.viewerUpdates === '" + std::to_string(k) + "'";
+    if (!browser->WaitFor(done, 60)) throw std::runtime_error("the live page did not redraw");
+    const double drawn_ms =
+        std::stod(browser->Evaluate("document.body.dataset.viewerUpdatedAt").get<std::string>());
+    std::cout << "push " << k << ": " << event.size() << " bytes, encoded in " << encode_s
+              << " s CPU, redrawn " << drawn_ms - sent_ms << " ms after the push began\n";
+  }
+  std::cout << "live page errors: " << browser->Errors().size() << "\n";
+}
+
 int Run(int argc, char** argv) {
   const Options o = Parse(argc, argv);
   CaseSession session(LoadCaseConfig(o.config));
@@ -170,6 +217,7 @@ int Run(int argc, char** argv) {
   const fs::path page = o.out / "viewer.html";
   std::ofstream(page, std::ios::binary) << html;
   Measure(page, o);
+  if (o.live_pushes > 0) MeasureLive(in, o);
   return 0;
 }
 
