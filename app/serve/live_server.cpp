@@ -22,7 +22,8 @@
 #include "serve/http_head.h"
 
 namespace occlude::app {
-namespace {
+// Named, not anonymous: LiveServer::Impl holds these (unity builds warn otherwise).
+namespace live_server_internal {
 
 using Clock = std::chrono::steady_clock;
 using serve_detail::HeadStatus;
@@ -76,7 +77,9 @@ void CheckLimits(const LiveServerOptions& o) {
   if (!(o.keepalive_s > 0)) throw std::invalid_argument("keepalive_s: must be positive");
 }
 
-}  // namespace
+}  // namespace live_server_internal
+
+using namespace live_server_internal;
 
 struct LiveServer::Impl {
   LiveServerOptions options;
