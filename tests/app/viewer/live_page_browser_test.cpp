@@ -45,7 +45,7 @@ TEST(LivePageBrowserTest, AnEventPublishedReachesTheOpenPage) {
 }
 
 /// A pushed pose and colours change at least this many pixels of the canvas.
-constexpr int kMinChangedPixels = 2000;
+constexpr int kMinPushChangedPixels = 2000;
 
 TEST(LivePageBrowserTest, TheLiveViewerRedrawsWithEachProposalPushed) {
   std::string why;
@@ -70,7 +70,7 @@ TEST(LivePageBrowserTest, TheLiveViewerRedrawsWithEachProposalPushed) {
   EXPECT_EQ(browser->Evaluate("[occludeViewer.state().proposal, occludeViewer.state().proposals]"),
             nlohmann::json({1, 2}));
   EXPECT_GT(browser->Evaluate("occludeViewer.changedSinceSnapshot()").get<int>(),
-            kMinChangedPixels);
+            kMinPushChangedPixels);
   // The same label again replaces that proposal rather than adding one.
   browser->Evaluate("occludeViewer.takeSnapshot()");
   later[1].label = "refined";
@@ -78,7 +78,7 @@ TEST(LivePageBrowserTest, TheLiveViewerRedrawsWithEachProposalPushed) {
   ASSERT_TRUE(browser->WaitFor("document.body.dataset.viewerUpdates === '2'", 30));
   EXPECT_EQ(browser->Evaluate("occludeViewer.state().proposals"), 2);
   EXPECT_GT(browser->Evaluate("occludeViewer.changedSinceSnapshot()").get<int>(),
-            kMinChangedPixels);
+            kMinPushChangedPixels);
   EXPECT_EQ(browser->Evaluate("document.querySelector('#occlude-viewer-numbers caption')"
                               ".textContent"),
             "refined");
