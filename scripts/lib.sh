@@ -11,7 +11,11 @@ OCCLUDE_PACKAGES=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev
+  libjs-three
 )
+# The test lane only: headless Chromium for the viewer's browser tests (app_viewer_tests;
+# they skip, saying why, without it). scripts/test adds it.
+OCCLUDE_TEST_PACKAGES=(chromium)
 
 occlude_install_deps() {
   local missing=() p

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -78,6 +79,16 @@ RawMesh ImportWithAssimp(const std::filesystem::path& file, std::string_view byt
 /// MeshError when no triangle is left.
 TriangleMesh BuildMesh(const std::filesystem::path& file, RawMesh raw, double mm_per_unit,
                        LoadReport& report);
+
+/// Refuses what no mesh file can hold: no triangles, indices outside the
+/// vertices, non-finite coordinates. Throws MeshError naming `file`.
+void CheckWritable(const TriangleMesh& mesh, const std::filesystem::path& file);
+/// Refuses coordinates beyond the float range; `format` names what stores floats.
+void CheckFitsFloat(const TriangleMesh& mesh, const std::filesystem::path& file,
+                    const char* format);
+/// Little-endian 32-bit values into out[0..3].
+void PutU32(std::uint32_t value, char* out);
+void PutF32(float value, char* out);
 
 /// Binary and ASCII STL file contents for `mesh` (validated; throws MeshError
 /// naming `file`).

@@ -1,5 +1,6 @@
 // STL writers (binary and ASCII), atomic: the bytes are built in memory after
-// validating the mesh, then written beside the target and renamed over it.
+// validating the mesh, then written beside the target and renamed over it. Also
+// the checks and little-endian putters the PLY writer shares.
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -10,12 +11,9 @@
 
 namespace occlude::io {
 namespace detail {
-namespace {
 
 namespace fs = std::filesystem;
 
-// Refuses what no STL can hold: no triangles, indices outside the vertices,
-// non-finite coordinates.
 void CheckWritable(const TriangleMesh& mesh, const fs::path& file) {
   if (mesh.triangles.empty()) Fail(file, "cannot write: the mesh has no triangles");
   const auto nv = static_cast<int>(mesh.vertices.size());
@@ -33,12 +31,13 @@ void CheckWritable(const TriangleMesh& mesh, const fs::path& file) {
   }
 }
 
-// Unit normal of triangle t from its corners (zero when degenerate).
-Eigen::Vector3d NormalOf(const TriangleMesh& mesh, std::size_t t) {
-  const Eigen::Vector3d n =
-      (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
-  const double length = n.norm();
-  return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
+void CheckFitsFloat(const TriangleMesh& mesh, const fs::path& file, const char* format) {
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (mesh.vertices[v].cwiseAbs().maxCoeff() > static_cast<double>(FLT_MAX)) {
+      Fail(file, "cannot write: vertex " + std::to_string(v) +
+                     " does not fit a 32-bit float, which " + format + " stores");
+    }
+  }
 }
 
 void PutU32(std::uint32_t value, char* out) {
@@ -49,6 +48,16 @@ void PutF32(float value, char* out) {
   std::uint32_t bits;
   std::memcpy(&bits, &value, sizeof bits);
   PutU32(bits, out);
+}
+
+namespace {
+
+// Unit normal of triangle t from its corners (zero when degenerate).
+Eigen::Vector3d NormalOf(const TriangleMesh& mesh, std::size_t t) {
+  const Eigen::Vector3d n =
+      (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+  const double length = n.norm();
+  return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
 void PutVector(const Eigen::Vector3d& v, char* out) {
@@ -81,12 +90,7 @@ std::string EncodeBinaryStl(const TriangleMesh& mesh, const fs::path& file,
   if (mesh.triangles.size() > UINT32_MAX) {
     Fail(file, "cannot write: binary STL holds at most 4294967295 triangles");
   }
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    if (mesh.vertices[v].cwiseAbs().maxCoeff() > static_cast<double>(FLT_MAX)) {
-      Fail(file, "cannot write: vertex " + std::to_string(v) +
-                     " does not fit a 32-bit float, which binary STL stores");
-    }
-  }
+  CheckFitsFloat(mesh, file, "binary STL");
   std::string out = HeaderBytes(header);
   out.resize(kStlPreambleBytes + kStlRecordBytes * mesh.triangles.size(), '\0');
   PutU32(static_cast<std::uint32_t>(mesh.triangles.size()), out.data() + kStlHeaderBytes);
