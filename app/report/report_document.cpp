@@ -88,7 +88,8 @@ json Settings(const CaseConfig& c, const ReportAnalysis& a) {
           {"locked", locked}};
 }
 
-std::string Fixed(double v, int decimals) {
+// `v` with `decimals` decimals for an HTML cell; a dash when not finite.
+std::string HtmlNumber(double v, int decimals) {
   if (!std::isfinite(v)) return "&ndash;";
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -125,7 +126,8 @@ std::string Row(const std::string& name, const std::string& value) {
 }
 
 std::string Triple(const Eigen::Vector3d& v, int decimals) {
-  return Fixed(v.x(), decimals) + ", " + Fixed(v.y(), decimals) + ", " + Fixed(v.z(), decimals);
+  return HtmlNumber(v.x(), decimals) + ", " + HtmlNumber(v.y(), decimals) + ", " +
+         HtmlNumber(v.z(), decimals);
 }
 
 std::string PoseSection(const ReportInputs& in) {
@@ -139,7 +141,7 @@ std::string PoseSection(const ReportInputs& in) {
     << "</table>\n<p class=\"note\">X<sub>LU</sub> (mm):</p><pre>";
   const Eigen::Matrix4d m = a.X_LU.matrix();
   for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) s << (c ? "  " : "") << Fixed(m(r, c), c == 3 ? 4 : 7);
+    for (int c = 0; c < 4; ++c) s << (c ? "  " : "") << HtmlNumber(m(r, c), c == 3 ? 4 : 7);
     s << "\n";
   }
   s << "</pre>\n";
@@ -152,19 +154,19 @@ std::string MetricsSection(const ReportInputs& in) {
   const bool ok = o.max_penetration_mm <= c.max_penetration_mm;
   std::ostringstream s;
   s << "<h2>Contact</h2>\n<table>\n"
-    << Row("contact area (0-" + Fixed(c.contact_band_mm, 2) + " mm)",
-           Fixed(o.contact_area_mm2, 2) + " mm&sup2;")
+    << Row("contact area (0-" + HtmlNumber(c.contact_band_mm, 2) + " mm)",
+           HtmlNumber(o.contact_area_mm2, 2) + " mm&sup2;")
     << Row("contact spots", std::to_string(in.analysis->spots.size()))
-    << Row("maximum penetration", Fixed(o.max_penetration_mm, 3) + " mm " +
+    << Row("maximum penetration", HtmlNumber(o.max_penetration_mm, 3) + " mm " +
                                       (ok ? "<span class=\"ok\">(within the allowed "
                                           : "<span class=\"bad\">(EXCEEDS the allowed ") +
-                                      Fixed(c.max_penetration_mm, 3) + " mm)</span>")
-    << Row("penetration area", Fixed(o.penetration_area_mm2, 2) + " mm&sup2;")
-    << Row("smallest gap", Fixed(o.min_distance_mm, 3) + " mm")
+                                      HtmlNumber(c.max_penetration_mm, 3) + " mm)</span>")
+    << Row("penetration area", HtmlNumber(o.penetration_area_mm2, 2) + " mm&sup2;")
+    << Row("smallest gap", HtmlNumber(o.min_distance_mm, 3) + " mm")
     << Row("left / right share",
-           Fixed(100 * o.left_share, 0) + " % / " + Fixed(100 * o.right_share, 0) + " %")
-    << Row("anterior / posterior share",
-           Fixed(100 * o.anterior_share, 0) + " % / " + Fixed(100 * o.posterior_share, 0) + " %")
+           HtmlNumber(100 * o.left_share, 0) + " % / " + HtmlNumber(100 * o.right_share, 0) + " %")
+    << Row("anterior / posterior share", HtmlNumber(100 * o.anterior_share, 0) + " % / " +
+                                             HtmlNumber(100 * o.posterior_share, 0) + " %")
     << "</table>\n";
   if (o.deep_samples > 0) {
     s << "<p class=\"bad\">" << o.deep_samples
@@ -183,9 +185,10 @@ std::string TeethSection(const ReportInputs& in) {
        "(mm&sup2;)</th></tr>\n";
   for (const auto& t : teeth) {
     s << "<tr" << (t.contact_area_mm2 > 0 ? "" : " class=\"dim\"") << "><td>" << t.tooth
-      << "</td><td>" << (t.upper ? "upper" : "lower") << "</td><td>" << Fixed(t.contact_area_mm2, 2)
-      << "</td><td>" << t.spots << "</td><td>" << Fixed(t.max_penetration_mm, 3) << "</td><td>"
-      << Fixed(t.penetration_area_mm2, 2) << "</td></tr>\n";
+      << "</td><td>" << (t.upper ? "upper" : "lower") << "</td><td>"
+      << HtmlNumber(t.contact_area_mm2, 2) << "</td><td>" << t.spots << "</td><td>"
+      << HtmlNumber(t.max_penetration_mm, 3) << "</td><td>" << HtmlNumber(t.penetration_area_mm2, 2)
+      << "</td></tr>\n";
   }
   s << "</table>\n";
   return s.str();
@@ -199,7 +202,7 @@ std::string SettingsSection(const ReportInputs& in) {
   s << Row("meshes", std::to_string(in.jaws->lower_L->num_triangles()) + " lower, " +
                          std::to_string(in.jaws->upper_U->num_triangles()) + " upper triangles");
   for (const auto& [step, seconds] : in.analysis->timings_s)
-    s << Row("time: " + Escape(step), Fixed(seconds, 2) + " s");
+    s << Row("time: " + Escape(step), HtmlNumber(seconds, 2) + " s");
   s << "</table>\n";
   return s.str();
 }
