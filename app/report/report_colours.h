@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "report/render_raster.h"
+#include "viewer/contact_colours.h"
 
 namespace occlude::app::render {
 
@@ -17,13 +18,14 @@ struct MapScale {
   double penetration_from_mm = 0.01;  ///< d < -this is drawn as penetration
 };
 
-inline constexpr Rgb kPenetrationColour = {200, 0, 200};
-inline constexpr Rgb kFarColour = {226, 222, 210};
+inline constexpr Rgb kPenetrationColour = kContactPenetrationColour;
+inline constexpr Rgb kFarColour = kContactFarColour;
 inline constexpr Rgb kBackground = {255, 255, 255};
 /// Value stored for a vertex with no opposing surface within reach.
-inline constexpr float kFarValue = 1e6f;
+inline constexpr float kFarValue = kContactFarValue;
 
-/// Colour of signed distance d (mm) on the scale.
+/// Colour of signed distance d (mm) on the scale: the viewer's ramp (viewer/contact_colours.h),
+/// so the still images and the 3D view agree.
 Rgb DistanceColour(double d, const MapScale& scale);
 
 /// Hue in degrees [0, 360), saturation and value in [0, 1].

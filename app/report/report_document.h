@@ -10,6 +10,7 @@
 #include "config/case_config.h"
 #include "report/report_analysis.h"
 #include "session/jaw_pair.h"
+#include "viewer/html_text.h"  // Base64 of the embedded images
 
 namespace occlude::app {
 
@@ -32,8 +33,5 @@ struct ReportInputs {
 std::string MetricsJson(const ReportInputs& in);
 std::string PoseJson(const ReportInputs& in);
 std::string ReportHtml(const ReportInputs& in);
-
-/// Standard base64 (RFC 4648, with padding).
-std::string Base64(const std::string& bytes);
 
 }  // namespace occlude::app

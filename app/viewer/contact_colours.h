@@ -2,8 +2,8 @@
 // OpenCV: signed distance to the opposing arch on a fixed mm scale, red (tight
 // contact) through orange, yellow and green to blue (open, at max_mm); farther
 // surface in a neutral ivory; penetration deeper than `penetration_from_mm` in
-// magenta, a colour the ramp never uses. The same stops as the report's
-// app/src/report_colours.cpp (DistanceColour), which should call this one.
+// magenta, a colour the ramp never uses. The one definition of the ramp: the report's
+// still images (report/report_colours.h, DistanceColour) call it.
 #pragma once
 
 #include <array>

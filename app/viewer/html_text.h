@@ -1,7 +1,6 @@
 // Text for self-contained HTML: base64 of bytes (data URIs, embedded typed
 // arrays), HTML escaping of text and attributes, and JSON made safe to sit
-// inside a <script> element. The report's app/src/report_document.cpp has its
-// own Base64 and Escape; these are meant to replace them (one definition).
+// inside a <script> element. The report's pages embed their images with this Base64.
 #pragma once
 
 #include <string>
