@@ -25,7 +25,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <random>
@@ -33,6 +32,7 @@
 #include <string>
 
 #include "occlude/io/dental.h"
+#include "occlude/io/landmark_file.h"
 #include "occlude/io/mesh_io.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "occlude/planner/global_search.h"
@@ -67,23 +67,16 @@ struct Case {
 };
 
 // Landmark tooth points of one jaw: per tooth the mean of its cusp and incisal-edge landmarks.
-std::vector<planner::ToothPoint> LandmarkTeeth(const std::filesystem::path& csv, io::Jaw jaw) {
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);  // header jaw,tooth,type,x_mm,y_mm,z_mm
+std::vector<planner::ToothPoint> LandmarkTeeth(const std::vector<io::Landmark>& landmarks,
+                                               io::Jaw jaw) {
   std::map<int, std::pair<Eigen::Vector3d, int>> sum;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string f[6];
-    for (auto& v : f) std::getline(ss, v, ',');
-    const auto type = io::LandmarkTypeFromName(f[2]);
-    if (io::JawFromName(f[0]) != jaw || !type) continue;
-    if (*type == io::LandmarkType::kMesial || *type == io::LandmarkType::kDistal ||
-        *type == io::LandmarkType::kFacial || *type == io::LandmarkType::kLingual ||
-        *type == io::LandmarkType::kCentralFossa)
+  for (const io::Landmark& l : landmarks) {
+    if (l.jaw != jaw || l.type == io::LandmarkType::kMesial ||
+        l.type == io::LandmarkType::kDistal || l.type == io::LandmarkType::kFacial ||
+        l.type == io::LandmarkType::kLingual || l.type == io::LandmarkType::kCentralFossa)
       continue;
-    auto& [p, n] = sum.try_emplace(std::stoi(f[1]), Eigen::Vector3d::Zero(), 0).first->second;
-    p += Eigen::Vector3d(std::stod(f[3]), std::stod(f[4]), std::stod(f[5]));
+    auto& [p, n] = sum.try_emplace(l.tooth_fdi, Eigen::Vector3d::Zero(), 0).first->second;
+    p += l.p;
     ++n;
   }
   std::vector<planner::ToothPoint> teeth;
@@ -122,8 +115,9 @@ Case LoadCase(const std::string& which) {
   c.lower_arch.occlusal_hint_J = up;
   c.upper_arch.occlusal_hint_J = -up;  // the cases share one frame at the registered bite
   if (std::filesystem::exists(dir / "landmarks.csv")) {
-    c.lower_arch.points_J = LandmarkTeeth(dir / "landmarks.csv", io::Jaw::kLower);
-    c.upper_arch.points_J = LandmarkTeeth(dir / "landmarks.csv", io::Jaw::kUpper);
+    const std::vector<io::Landmark> landmarks = io::ReadLandmarkFile(dir / "landmarks.csv");
+    c.lower_arch.points_J = LandmarkTeeth(landmarks, io::Jaw::kLower);
+    c.upper_arch.points_J = LandmarkTeeth(landmarks, io::Jaw::kUpper);
   } else {
     c.lower_arch.teeth_J = TeethFiles(dir / "teeth", 17, 32);
     c.upper_arch.teeth_J = TeethFiles(dir / "teeth", 1, 16);
