@@ -56,7 +56,7 @@ std::vector<Eigen::Vector3d> InterfacePoints(const io::TriangleMesh& lower_L,
     bool near = false;
     for (int d = 0; d < 27 && !near; ++d) {
       const Eigen::Vector3d q =
-          v + kInterfaceMm * Eigen::Vector3d(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1);
+          v + kInterfaceMm * Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1).cast<double>();
       const auto it = cells.find(CellKey(q, kInterfaceMm));
       if (it == cells.end()) continue;
       for (const std::uint32_t j : it->second) {

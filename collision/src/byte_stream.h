@@ -60,7 +60,7 @@ class ByteReader {
   T Value() {
     static_assert(IsBytes<T>::value, "Value reads plain values");
     Need(sizeof(T));
-    T value;
+    T value{};
     std::memcpy(static_cast<void*>(&value), bytes_.data() + at_, sizeof(T));
     at_ += sizeof(T);
     return value;

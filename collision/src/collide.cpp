@@ -30,9 +30,10 @@ constexpr double kPruneSlackMm = 1e-9;  // keeps rounding from pruning a valid p
 // Bits set in a child mask (no popcnt instruction assumed).
 constexpr std::array<std::uint8_t, 256> kPopCount8 = [] {
   std::array<std::uint8_t, 256> t{};
-  for (int m = 0; m < 256; ++m)
+  for (int m = 0; m < 256; ++m) {
     t[static_cast<std::size_t>(m)] =
         static_cast<std::uint8_t>((m & 1) + t[static_cast<std::size_t>(m >> 1)]);
+  }
   return t;
 }();
 
@@ -57,9 +58,9 @@ struct Side {
   Eigen::Vector3d slot_dir[8];  // R * ChildSlotSign(k)
   double s;                     // voxel size
   bool rotated;
-  double edge[kMaxLevels];           // node edge per level
-  double simple_radius[kMaxLevels];  // sqrt(3)/2 * edge
-  double child_offset[kMaxLevels];   // ChildCenterOffset(s, level)
+  double edge[kMaxLevels] = {};           // node edge per level
+  double simple_radius[kMaxLevels] = {};  // sqrt(3)/2 * edge
+  double child_offset[kMaxLevels] = {};   // ChildCenterOffset(s, level)
 
   Side(const SphereTree& tr, const Eigen::Isometry3d& X, bool is_rotated)
       : tree(&tr),
@@ -141,14 +142,14 @@ class CubePairTest {
 
  private:
   Eigen::Matrix3d R_;
-  double face_a_[3], face_b_[3], cross_[3][3];
+  double face_a_[3] = {}, face_b_[3] = {}, cross_[3][3] = {};
 };
 
 // A node on the stack: index, level, and a centre in A whose meaning depends on
 // the mode (cube centre for implicit modes, sphere centre for explicit).
 struct NodeRef {
-  std::uint32_t node;
-  int level;
+  std::uint32_t node = 0;
+  int level = 0;
   Eigen::Vector3d center;
 };
 struct Entry {

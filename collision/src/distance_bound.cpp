@@ -104,9 +104,9 @@ void MinRow(const std::uint8_t* row, std::uint8_t add, std::uint8_t* out) {
 // the source bricks below, at and above it. False when every cell stays at the cap.
 bool PassBrick(const std::array<const Brick*, 3>& src, int axis, const std::vector<int>& t,
                std::uint8_t cap, Brick* dst) {
-  std::array<std::uint8_t, 3 * 512> rows;
+  std::array<std::uint8_t, 3 * 512> rows{};
   GatherRows(src, axis, cap, rows.data());
-  std::array<std::uint8_t, 512> out;
+  std::array<std::uint8_t, 512> out{};
   out.fill(cap);
   const int reach = static_cast<int>(t.size()) - 1;  // K < 8: the neighbours suffice
   for (int along = 0; along < kBrickEdge; ++along) {
@@ -159,7 +159,7 @@ BrickMap Pass(const BrickMap& src, int axis, const std::vector<int>& t, int thre
     const std::size_t end = std::min(candidates.size(), (block + 1) * kBlock);
     Brick brick;
     for (std::size_t i = block * kBlock; i < end; ++i) {
-      std::array<const Brick*, 3> near;
+      std::array<const Brick*, 3> near{};
       for (int k = 0; k < 3; ++k) {
         Eigen::Vector3i b = candidates[i];
         b[axis] += k - 1;

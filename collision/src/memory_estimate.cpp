@@ -73,7 +73,7 @@ double SurfaceVoxels(const io::TriangleMesh& mesh, double s) {
 double SampleCount(const io::TriangleMesh& mesh, double spacing) {
   double n = 0.0;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+    const Eigen::Vector3d &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const double k = std::max(1.0, std::ceil(longest / spacing));
     n += k * k;

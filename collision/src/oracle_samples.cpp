@@ -49,7 +49,7 @@ long FindSampleVoxel(const VoxelGrid& grid, const Eigen::Vector3d& p, std::uint3
 // their centroids, each standing for area/k^2.
 void SampleTriangle(const io::TriangleMesh& m, std::uint32_t t, double spacing,
                     std::vector<RawSample>* out) {
-  const Eigen::Vector3d a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+  const Eigen::Vector3d &a = m.corner(t, 0), &b = m.corner(t, 1), &c = m.corner(t, 2);
   const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
   const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
   const double area = 0.5 * (b - a).cross(c - a).norm() / (k * k);

@@ -79,7 +79,8 @@ std::vector<std::uint32_t> Kept(const io::TriangleMesh& mesh_L, const DistanceBo
   const double piece = 2.0 * other.cell_mm();
   std::vector<std::uint32_t> kept;
   for (std::uint32_t t = 0; t < mesh_L.num_triangles(); ++t) {
-    const Eigen::Vector3d a = mesh_L.corner(t, 0), b = mesh_L.corner(t, 1), c = mesh_L.corner(t, 2);
+    const Eigen::Vector3d &a = mesh_L.corner(t, 0), &b = mesh_L.corner(t, 1),
+                          &c = mesh_L.corner(t, 2);
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const int k =
         piece > 0.0 ? std::clamp(static_cast<int>(std::ceil(longest / piece)), 1, 256) : 1;
@@ -194,8 +195,8 @@ double MaxDisplacementMm(const io::TriangleMesh& upper_U, const RegionOfInterest
   return BoundNorm(request, 0) + 2.0 * std::sin(0.5 * angle) * radius;
 }
 
-RegionOfInterest ComputeRegionOfInterest(std::shared_ptr<const io::TriangleMesh> lower_L,
-                                         std::shared_ptr<const io::TriangleMesh> upper_U,
+RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                                         const std::shared_ptr<const io::TriangleMesh>& upper_U,
                                          const RegionOfInterestRequest& request) {
   if (!lower_L || !upper_U) throw std::invalid_argument("ComputeRegionOfInterest: null mesh");
   const auto start = std::chrono::steady_clock::now();

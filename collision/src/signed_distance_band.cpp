@@ -390,7 +390,7 @@ void NarrowBandSdf::BandVoxelCells(std::size_t brick, int bit, float depth, floa
   // The voxel's index in the result's voxels (shifted).
   const Eigen::Vector3i g = 4 * MortonDecode(band_.bricks()[brick].key) + l;
   const float* v = corner_bricks_[brick].value + l.x() + 5 * l.y() + 25 * l.z();
-  std::array<float, 8> c;
+  std::array<float, 8> c{};
   for (int o = 0; o < 8; ++o) c[static_cast<std::size_t>(o)] = v[kCornerStep[o]];
   // A trilinear value lies between its voxel's smallest and largest corner.
   const bool in_range = *std::min_element(c.begin(), c.end()) <= value &&
@@ -410,7 +410,7 @@ void NarrowBandSdf::BandVoxelCells(std::size_t brick, int bit, float depth, floa
   }
   // The field on the cells' corners, then the cells whose corner range meets [-depth, value].
   const int n = split + 1;
-  std::array<float, 9 * 9 * 9> at;
+  std::array<float, 9 * 9 * 9> at{};
   for (int z = 0; z < n; ++z) {
     for (int y = 0; y < n; ++y) {
       for (int x = 0; x < n; ++x) {

@@ -94,8 +94,8 @@ std::array<UnitSphere, 256> ComputeTable() {
     }
     std::vector<Eigen::Vector3d> pts;
     for (int i = 0; i < 27; ++i) {
-      if (used[i])
-        pts.emplace_back(0.5 * (i % 3) - 0.5, 0.5 * ((i / 3) % 3) - 0.5, 0.5 * (i / 9) - 0.5);
+      const Eigen::Vector3i cell(i % 3, (i / 3) % 3, i / 9);
+      if (used[i]) pts.push_back(0.5 * cell.cast<double>() - Eigen::Vector3d::Constant(0.5));
     }
     table[static_cast<std::size_t>(mask)] =
         MinimumEnclosingSphere(pts.data(), static_cast<int>(pts.size()));

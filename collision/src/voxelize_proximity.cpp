@@ -14,7 +14,7 @@ namespace occlude::collision::detail {
 namespace {
 
 struct Offset {
-  std::int16_t d[3];
+  std::int16_t d[3] = {};
   bool operator==(const Offset& o) const {
     return d[0] == o.d[0] && d[1] == o.d[1] && d[2] == o.d[2];
   }

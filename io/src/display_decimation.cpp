@@ -217,7 +217,7 @@ DecimationResult Collapse(const TriangleMesh& mesh, const Clusters& c) {
   std::vector<std::int32_t> index(static_cast<std::size_t>(c.count), -1);
   std::unordered_set<std::array<std::int32_t, 3>, TripleHash> kept;
   for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    std::array<std::int32_t, 3> ids;
+    std::array<std::int32_t, 3> ids{};
     for (int k = 0; k < 3; ++k)
       ids[k] = c.of_vertex[static_cast<std::size_t>(mesh.triangles[t][k])];
     std::array<std::int32_t, 3> sorted = ids;

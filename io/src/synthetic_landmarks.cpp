@@ -117,7 +117,7 @@ Eigen::Vector3d Tip(const Surface& surface, int tooth, double s, double t) {
   const OcclusalGrid& grid = surface.grid;
   const Eigen::Vector2d at = ArchPoint(surface.arch, s) + t * ArchNormal(surface.arch, s);
   int v = MostProminentNear(surface, tooth, at, s, t, -1);
-  const Eigen::Vector3d design = surface.At(s, t);
+  Eigen::Vector3d design = surface.At(s, t);
   if (v < 0) return design;  // no vertex of the crown nearby (not on valid grids)
   for (int step = 0; step < kTipClimbs; ++step) {
     const auto k = static_cast<std::size_t>(v);

@@ -54,18 +54,21 @@ void CheckArch(const JawArch& a, const std::string& name) {
   const Eigen::Vector3d* axes[3] = {&a.occlusal_J, &a.anterior_J, &a.lateral_J};
   const char* names[3] = {"occlusal_J", "anterior_J", "lateral_J"};
   for (int i = 0; i < 3; ++i) {
-    if (std::abs(axes[i]->norm() - 1.0) > kAxisTolerance)
+    if (std::abs(axes[i]->norm() - 1.0) > kAxisTolerance) {
       fail(std::string(names[i]) + ": must be a unit vector (length " +
            std::to_string(axes[i]->norm()) + ")");
+    }
     for (int j = i + 1; j < 3; ++j) {
-      if (std::abs(axes[i]->dot(*axes[j])) > kAxisTolerance)
+      if (std::abs(axes[i]->dot(*axes[j])) > kAxisTolerance) {
         fail(std::string(names[i]) + " and " + names[j] + ": must be orthogonal (cosine " +
              std::to_string(axes[i]->dot(*axes[j])) + ")");
+      }
     }
   }
-  if (a.curve_J.size() < kMinCurvePoints)
+  if (a.curve_J.size() < kMinCurvePoints) {
     fail("curve_J: needs at least " + std::to_string(kMinCurvePoints) + " points (has " +
          std::to_string(a.curve_J.size()) + "); no teeth found?");
+  }
 }
 
 }  // namespace
@@ -192,9 +195,10 @@ Eigen::Vector3d FitCurves(const std::vector<Eigen::Vector2d>& target,
 
 void CheckSettings(const AlignmentSettings& s) {
   auto check = [](double v, const char* name) {
-    if (!(std::isfinite(v) && v >= 0.0))
+    if (!(std::isfinite(v) && v >= 0.0)) {
       throw std::invalid_argument(std::string("AlignmentSettings.") + name +
                                   ": must be finite and >= 0");
+    }
   };
   check(s.overjet_mm, "overjet_mm (default 2)");
   check(s.overbite_mm, "overbite_mm (default 2)");
@@ -226,6 +230,7 @@ ArchAlignment AlignArches(const JawArch& lower_L, const JawArch& upper_U,
   if (!settings.fit_curves) return a;
   const Eigen::Vector3d m = FitCurves(target, moving, incisal);
   std::vector<Eigen::Vector2d> moved;
+  moved.reserve(moving.size());
   for (const auto& p : moving) moved.push_back(Move(m, incisal, p));
   // The fit turns (u, w) from lateral towards anterior: about lateral x anterior, which is
   // +-occlusal; yaw_deg is the same turn about occlusal (ArchShift's sign).

@@ -181,9 +181,10 @@ std::vector<PathPoint> EvaluatePath(const OracleStage& stage, const Eigen::Isome
                                     const Eigen::Vector3d& p_LPivot,
                                     const std::vector<Eigen::Vector3d>& points_U,
                                     const PlanRequest& request, int steps) {
-  if (steps < 1)
+  if (steps < 1) {
     throw std::invalid_argument("EvaluatePath: steps must be at least 1 (got " +
                                 std::to_string(steps) + ")");
+  }
   const PoseParameters to = DecomposePose(X_LU_to, p_LPivot, X_LU_from);
   std::vector<PathPoint> path;
   path.reserve(static_cast<std::size_t>(steps) + 1);

@@ -34,6 +34,7 @@ std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& sam
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
   std::vector<Vector6d> sorted;
+  sorted.reserve(order.size());
   for (const std::size_t i : order) sorted.push_back(poses[i]);
   return sorted;
 }

@@ -138,8 +138,8 @@ collision::OracleOptions StageOracleOptions(const collision::OracleOptions& base
   return o;
 }
 
-OwnedSchedule BuildSchedule(std::shared_ptr<const io::TriangleMesh> lower_L,
-                            std::shared_ptr<const io::TriangleMesh> upper_U,
+OwnedSchedule BuildSchedule(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                            const std::shared_ptr<const io::TriangleMesh>& upper_U,
                             const std::vector<double>& voxel_sizes_mm, bool exact_last,
                             const collision::OracleOptions& base_options) {
   if (voxel_sizes_mm.empty()) {

@@ -42,9 +42,10 @@ std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSa
                            static_cast<int>(std::floor(p.z() / link_mm)));
   };
   std::vector<std::pair<std::uint64_t, int>> keyed(samples.size());
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
     keyed[static_cast<std::size_t>(i)] = {
         CellKey(cell_of(samples[static_cast<std::size_t>(i)].p_L)), i};
+  }
   std::sort(keyed.begin(), keyed.end());
   const double link2 = link_mm * link_mm;
   for (int i = 0; i < n; ++i) {

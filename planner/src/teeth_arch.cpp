@@ -37,9 +37,10 @@ void CheckTeeth(const std::vector<ToothPoint>& teeth) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("JawArchFromTeeth: " + what);
   };
-  if (teeth.size() < kMinTeeth)
+  if (teeth.size() < kMinTeeth) {
     fail("needs at least " + std::to_string(kMinTeeth) + " teeth (got " +
          std::to_string(teeth.size()) + ")");
+  }
   bool left = false, right = false;
   for (const ToothPoint& t : teeth) {
     if (!io::IsValidFdi(t.fdi)) fail("tooth " + std::to_string(t.fdi) + " is no FDI number");

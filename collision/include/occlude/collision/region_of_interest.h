@@ -75,8 +75,8 @@ double MaxDisplacementMm(const io::TriangleMesh& upper_U, const RegionOfInterest
 
 /// Selects the region of interest (see the header comment). Throws std::invalid_argument for
 /// a null mesh, a negative or non-finite band, a non-positive voxel size or bad bounds.
-RegionOfInterest ComputeRegionOfInterest(std::shared_ptr<const io::TriangleMesh> lower_L,
-                                         std::shared_ptr<const io::TriangleMesh> upper_U,
+RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                                         const std::shared_ptr<const io::TriangleMesh>& upper_U,
                                          const RegionOfInterestRequest& request);
 
 /// The farthest (mm) a JawOracle built with `options` reads the lower jaw around an upper

@@ -342,7 +342,7 @@ class NarrowBandSdf {
   /// the brick uses are 0 and never read.
   struct alignas(64) CornerBrick {
     std::uint64_t mask = 0;  ///< band voxels of the brick (BrickSet mask)
-    float value[125];
+    float value[125] = {};
   };
   /// One corner brick of `brick` (a band brick) from the corner values (value[rank in corners]).
   static void FillCornerBrick(const detail::BrickSet::Brick& brick, const detail::BrickSet& corners,

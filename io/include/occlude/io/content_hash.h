@@ -62,7 +62,7 @@ class Hasher64 {
  private:
   void Stripe(const unsigned char* p);  ///< one 32-byte stripe into the four lanes
 
-  std::array<std::uint64_t, 4> lane_;
+  std::array<std::uint64_t, 4> lane_{};
   std::array<unsigned char, 32> pending_{};  ///< bytes not yet forming a whole stripe
   std::size_t pending_size_ = 0;
   std::uint64_t length_ = 0;
