@@ -6,6 +6,8 @@
 // limit; writes the result, the report and refine.json; and prints what changed.
 // --watch keeps the trees and repeats on every save of the config file, always from the same
 // base pose (the one at launch), so editing [adjust] moves the result predictably.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -59,6 +61,67 @@ std::string Triple(const Eigen::Vector3d& v, int digits) {
   return s.str();
 }
 
+// "tx, rz" of the set entries, or "nothing".
+std::string DofList(const std::array<bool, kNumDofs>& dofs) {
+  std::string out;
+  for (int i = 0; i < kNumDofs; ++i) {
+    if (dofs[static_cast<std::size_t>(i)])
+      out += (out.empty() ? "" : ", ") + std::string(DofName(i));
+  }
+  return out.empty() ? "nothing" : out;
+}
+
+// Holds refine.hold's degrees of freedom at the adjusted pose: locked in the request, whose
+// parameters are about the pivot carried to X_adjusted (so a held translation keeps the
+// adjusted value exactly). Throws UserError when nothing would be left free.
+void HoldDofs(const CaseConfig& config, const std::array<bool, kNumDofs>& held,
+              const Eigen::Isometry3d& X_adjusted, const Eigen::Vector3d& pivot_L,
+              planner::PlanRequest* request) {
+  if (std::none_of(held.begin(), held.end(), [](bool h) { return h; })) return;
+  bool any_free = false;
+  for (int i = 0; i < kNumDofs; ++i) {
+    request->locked[static_cast<std::size_t>(i)] |= held[static_cast<std::size_t>(i)];
+    any_free |= !request->locked[static_cast<std::size_t>(i)];
+  }
+  if (!any_free) {
+    throw UserError(config.file.string() + ": refine.hold: holding " + DofList(held) +
+                    " with bounds.locked leaves no degree of freedom to settle; hold fewer "
+                    "(e.g. refine.hold = [\"tx\"]) or set refine.hold = \"none\"");
+  }
+  request->pivot_L = X_adjusted * pivot_L;
+}
+
+// refine.hold as written: "adjusted", "none" or the list.
+std::string HoldSetting(const CaseConfig& config) {
+  if (config.refine.hold_adjusted) return "adjusted";
+  const std::string list = DofList(config.refine.hold);
+  return list == "nothing" ? "none" : "[" + list + "]";
+}
+
+// What the summary says about refine.hold.
+std::string HoldSummary(const CaseConfig& config, const std::array<bool, kNumDofs>& held,
+                        const planner::PoseEvaluation& after) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(3);
+  const std::string what = DofList(held);
+  if (what == "nothing") {
+    s << "  held nothing at the adjusted value ("
+      << (config.refine.hold_adjusted ? "[adjust] changes nothing" : "refine.hold = \"none\"")
+      << ")\n";
+    return s.str();
+  }
+  s << "  held " << what << " at the adjusted value (refine.hold = " << HoldSetting(config)
+    << (config.refine.hold_adjusted ? ": what [adjust] changes" : "") << "); the others settled\n";
+  if (!after.feasible) {
+    s << "  note: the adjusted pose cannot be made feasible with " << what << " held: penetration "
+      << after.constrained_penetration_mm << " mm remains, "
+      << after.constrained_penetration_mm - config.max_penetration_mm << " mm over the limit "
+      << config.max_penetration_mm
+      << " mm; adjust less, hold fewer or set refine.hold = \"none\"\n";
+  }
+  return s.str();
+}
+
 // One refinement from `base`; writes the outputs and prints the changes.
 void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::string& base_source,
                 const std::filesystem::path& out) {
@@ -72,6 +135,8 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
   request.num_starts = 1;
   request.max_proposals = 1;
   request.num_threads = 1;
+  const std::array<bool, kNumDofs> held = RefineHeldDofs(config);
+  HoldDofs(config, held, X_adjusted, session.pivot_L(), &request);
   // Locally, the finest oracle alone (built on first use, kept by --watch).
   const planner::OracleSchedule finest = {
       {&session.FinestOracle(), collision::AccuracyLevel::kSubVoxel}};
@@ -103,6 +168,11 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
         {"status", planner::ToString(after.status)}}},
       {"moved_from_base",
        {{"translation_mm", Vec(moved.translation_mm)}, {"rotation_deg", Vec(moved.rotation_deg)}}},
+      {"hold",
+       {{"setting", HoldSetting(config)},
+        {"held", DofList(held)},
+        {"penetration_over_limit_mm",
+         std::max(0.0, after.evaluation.constrained_penetration_mm - config.max_penetration_mm)}}},
       {"before", Metrics(before)},
       {"adjusted", Metrics(adjusted)},
       {"after", Metrics(after.evaluation)},
@@ -118,10 +188,10 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
             << "  moved t " << Triple(moved.translation_mm, 3) << " mm r "
             << Triple(moved.rotation_deg, 2) << " deg from the base ("
             << planner::ToString(after.status) << ")\n"
-            << "  contact " << std::setprecision(2) << before.contact_area_mm2 << " -> "
-            << after.evaluation.contact_area_mm2 << " mm^2, max penetration "
-            << std::setprecision(3) << before.max_penetration_mm << " -> "
-            << after.evaluation.max_penetration_mm << " mm (constrained "
+            << HoldSummary(config, held, after.evaluation) << "  contact " << std::setprecision(2)
+            << before.contact_area_mm2 << " -> " << after.evaluation.contact_area_mm2
+            << " mm^2, max penetration " << std::setprecision(3) << before.max_penetration_mm
+            << " -> " << after.evaluation.max_penetration_mm << " mm (constrained "
             << after.evaluation.constrained_penetration_mm << ", limit "
             << config.max_penetration_mm << ")\n"
             << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
