@@ -8,7 +8,9 @@
 // base pose (the one at launch), so editing [adjust] moves the result predictably.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,6 +24,7 @@
 #include "base/user_error.h"
 #include "cli/commands.h"
 #include "cli/options.h"
+#include "cli/refine_live.h"
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "config/pose_file.h"
@@ -44,6 +47,8 @@ struct RefineArgs {
   int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
   double poll_seconds = 0.2;
   double memory_budget_mb = 0;
+  std::vector<int> serve;  ///< --serve [PORT]: {PORT}, {0} without one; empty = not serving
+  std::string bind;        ///< --bind ADDR
 };
 
 json Metrics(const planner::PoseEvaluation& e) {
@@ -122,9 +127,19 @@ std::string HoldSummary(const CaseConfig& config, const std::array<bool, kNumDof
   return s.str();
 }
 
-// One refinement from `base`; writes the outputs and prints the changes.
-void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::string& base_source,
-                const std::filesystem::path& out) {
+// What one refinement gives the live page.
+struct RefineOutcome {
+  ReportAnalysis analysis;  ///< at the refined pose
+  planner::PoseEvaluation before, after;
+  planner::PoseParameters moved;  ///< from the base, about the pivot there
+  std::string held, status;
+};
+
+// One refinement from `base`; writes the outputs (the 3D view from `display`, else decimated
+// here) and prints the changes.
+RefineOutcome RefineOnce(CaseSession& session, const Eigen::Isometry3d& base,
+                         const std::string& base_source, const std::filesystem::path& out,
+                         const DisplayJaws* display = nullptr) {
   const double start = NowSeconds(), cpu_start = ThreadCpuSeconds();
   const CaseConfig& config = session.config();
   const Eigen::Isometry3d X_adjusted =
@@ -155,7 +170,7 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
   ReportAnalysis analysis = AnalyzePose(session, after.X_LU);
   const ReportFiles files =
       MakeReportFiles(session, analysis, "`occlude refine` from " + base_source,
-                      SearchJson(summary, false), SearchHtml(summary));
+                      SearchJson(summary, false), SearchHtml(summary), ReportView{display, {}});
   const json refine = {
       {"base", {{"source", base_source}, {"X_LU", json::parse(MatrixJson(base.matrix()))}}},
       {"adjust",
@@ -198,7 +213,58 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
             << NowSeconds() - start << " s wall, " << ThreadCpuSeconds() - cpu_start
             << " s CPU of this thread)\n"
             << std::flush;
+  return {std::move(analysis), before,
+          after.evaluation,    moved,
+          DofList(held),       planner::ToString(after.status)};
 }
+
+// The numbers the live page lists beside refinement `save` (0 = the one at launch).
+std::string LiveNumbers(const RefineOutcome& r, int save) {
+  const json numbers = {{"save", save},
+                        {"moved t (mm)", Triple(r.moved.translation_mm, 3)},
+                        {"moved r (deg)", Triple(r.moved.rotation_deg, 2)},
+                        {"held", r.held},
+                        {"contact before (mm\u00b2)", r.before.contact_area_mm2},
+                        {"contact after (mm\u00b2)", r.after.contact_area_mm2},
+                        {"max penetration before (mm)", r.before.max_penetration_mm},
+                        {"max penetration after (mm)", r.after.max_penetration_mm},
+                        {"status", r.status}};
+  return numbers.dump();
+}
+
+// Set by Ctrl-C (SIGINT) while --watch runs; a signal handler reaches only static storage.
+volatile std::sig_atomic_t g_interrupted = 0;
+std::atomic<LiveServer*> g_live_server{nullptr};
+
+void OnInterrupt(int) {
+  g_interrupted = 1;
+  if (LiveServer* server = g_live_server.load()) server->RequestStopFromSignal();
+}
+
+// Installs OnInterrupt for SIGINT and SIGTERM while it lives; restores the old handlers.
+class InterruptScope {
+ public:
+  explicit InterruptScope(LiveServer* server) {
+    g_interrupted = 0;
+    g_live_server = server;
+    struct sigaction action {};
+    action.sa_handler = OnInterrupt;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~InterruptScope() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+    g_live_server = nullptr;
+  }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction old_int_ {
+  }, old_term_{};
+};
 
 std::filesystem::file_time_type ModifiedAt(const std::filesystem::path& file) {
   std::error_code ec;
@@ -219,13 +285,30 @@ void RunRefine(const RefineArgs& args) {
     base = ReadPoseFile(last);
     source = "the last result (" + last.string() + ")";
   }
-  RefineOnce(*session, base, source, out);
-  if (!args.watch) return;
+  if (!args.watch) {
+    RefineOnce(*session, base, source, out);
+    return;
+  }
+  std::unique_ptr<RefineLivePage> live;
+  if (!args.serve.empty()) live = std::make_unique<RefineLivePage>(args.bind, args.serve.front());
+  const InterruptScope interrupt(live ? &live->server() : nullptr);
+  const auto refine = [&](const std::filesystem::path& folder, int save) {
+    if (!live) return RefineOnce(*session, base, source, folder);
+    const RefineOutcome r = RefineOnce(*session, base, source, folder, &live->Display(*session));
+    if (!live->Show(*session, r.analysis, LiveNumbers(r, save)) && save > 0) {
+      std::cerr << "occlude: the meshes changed: reload " << live->url() << "\n";
+    }
+    return r;
+  };
+  refine(out, 0);
+  if (live) std::cerr << "occlude: live page at " << live->url() << "\n";
   std::cerr << "occlude: watching " << config.file.string()
             << " (Ctrl-C to stop); every save refines from " << source << "\n";
   auto seen = ModifiedAt(config.file);
-  for (int done = 1; args.max_refinements == 0 || done < args.max_refinements;) {
+  for (int done = 1;
+       (args.max_refinements == 0 || done < args.max_refinements) && !g_interrupted;) {
     std::this_thread::sleep_for(std::chrono::duration<double>(args.poll_seconds));
+    if (g_interrupted) break;
     const auto now = ModifiedAt(config.file);
     if (now == seen) continue;
     seen = now;
@@ -238,11 +321,13 @@ void RunRefine(const RefineArgs& args) {
         std::cerr << "occlude: meshes or accuracy changed: rebuilding the models\n";
         session = std::make_unique<CaseSession>(updated, args.memory_budget_mb);
       }
-      RefineOnce(*session, base, source, OutputFolder(updated, args.out));
+      refine(OutputFolder(updated, args.out), done - 1);
     } catch (const UserError& e) {
       std::cerr << "occlude: error: " << e.what() << " (still watching)\n";
     }
   }
+  if (live) live->server().Stop();
+  if (g_interrupted) std::cerr << "occlude: stopped (interrupted); the outputs are complete\n";
 }
 
 }  // namespace
@@ -257,8 +342,18 @@ void AddRefineCommand(CLI::App& app) {
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->add_flag("--from-config", args->from_config,
                 "Start from the config's [start] pose, not the last result");
-  cmd->add_flag("--watch", args->watch,
-                "Keep the trees and refine again on every save of the config file");
+  auto* watch = cmd->add_flag("--watch", args->watch,
+                              "Keep the trees and refine again on every save of the config file");
+  auto* serve = cmd->add_option("--serve", args->serve,
+                                "With --watch: serve the live 3D page of the refinements on "
+                                "http://127.0.0.1:PORT/ (no PORT: any free port, printed)")
+                    ->expected(0, 1)
+                    ->check(CLI::Range(0, 65535))
+                    ->needs(watch);
+  cmd->add_option("--bind", args->bind,
+                  "With --serve: listen on this IPv4 address instead of 127.0.0.1 (warns: the "
+                  "page shows patient data to anyone who can reach it)")
+      ->needs(serve);
   cmd->add_option("--max-refinements", args->max_refinements,
                   "With --watch: stop after this many (0 = never)")
       ->check(CLI::Range(0, 1000000))
