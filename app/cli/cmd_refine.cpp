@@ -127,20 +127,23 @@ std::string HoldSummary(const CaseConfig& config, const std::array<bool, kNumDof
   return s.str();
 }
 
-// What one refinement gives the live page.
+// One refinement: the solve from the adjusted pose and the analysis of its result.
 struct RefineOutcome {
-  ReportAnalysis analysis;  ///< at the refined pose
-  planner::PoseEvaluation before, after;
-  planner::PoseParameters moved;  ///< from the base, about the pivot there
-  std::string held, status;
+  planner::PlanResult result;  ///< one proposal: the refined pose
+  ReportAnalysis analysis;     ///< at the refined pose
+  planner::PoseEvaluation before, adjusted;
+  planner::PoseParameters moved;     ///< from the base, about the pivot there
+  planner::PoseParameters absolute;  ///< about the pivot, relative to the pose as given
+  std::array<bool, kNumDofs> held{};
+  double start_s = 0, cpu_start_s = 0;  ///< wall and thread CPU clocks at the start
+  const planner::Proposal& after() const { return result.proposals.front(); }
 };
 
-// One refinement from `base`; writes the outputs (the 3D view from `display`, else decimated
-// here) and prints the changes.
-RefineOutcome RefineOnce(CaseSession& session, const Eigen::Isometry3d& base,
-                         const std::string& base_source, const std::filesystem::path& out,
-                         const DisplayJaws* display = nullptr) {
-  const double start = NowSeconds(), cpu_start = ThreadCpuSeconds();
+// Applies [adjust] to `base` and re-optimizes locally with refine.hold (nothing written).
+RefineOutcome Refine(CaseSession& session, const Eigen::Isometry3d& base) {
+  RefineOutcome r;
+  r.start_s = NowSeconds();
+  r.cpu_start_s = ThreadCpuSeconds();
   const CaseConfig& config = session.config();
   const Eigen::Isometry3d X_adjusted =
       planner::ComposePose(config.adjust, base * session.pivot_L(), base);
@@ -150,26 +153,31 @@ RefineOutcome RefineOnce(CaseSession& session, const Eigen::Isometry3d& base,
   request.num_starts = 1;
   request.max_proposals = 1;
   request.num_threads = 1;
-  const std::array<bool, kNumDofs> held = RefineHeldDofs(config);
-  HoldDofs(config, held, X_adjusted, session.pivot_L(), &request);
+  r.held = RefineHeldDofs(config);
+  HoldDofs(config, r.held, X_adjusted, session.pivot_L(), &request);
   // Locally, the finest oracle alone (built on first use, kept by --watch).
   const planner::OracleSchedule finest = {
       {&session.FinestOracle(), collision::AccuracyLevel::kSubVoxel}};
-  const planner::PoseEvaluation before = planner::EvaluatePose(finest.front(), base, request);
-  const planner::PoseEvaluation adjusted =
-      planner::EvaluatePose(finest.front(), X_adjusted, request);
-  const planner::PlanResult result = planner::Plan(finest, request);
-  const planner::Proposal& after = result.proposals.front();
-  const planner::PoseParameters moved =
-      planner::DecomposePose(after.X_LU, base * session.pivot_L(), base);
-  const planner::PoseParameters absolute =
-      planner::DecomposePose(after.X_LU, session.pivot_L(), Eigen::Isometry3d::Identity());
+  r.before = planner::EvaluatePose(finest.front(), base, request);
+  r.adjusted = planner::EvaluatePose(finest.front(), X_adjusted, request);
+  r.result = planner::Plan(finest, request);
+  r.moved = planner::DecomposePose(r.after().X_LU, base * session.pivot_L(), base);
+  r.absolute =
+      planner::DecomposePose(r.after().X_LU, session.pivot_L(), Eigen::Isometry3d::Identity());
+  r.analysis = AnalyzePose(session, r.after().X_LU);
+  return r;
+}
 
-  SearchSummary summary{"refine", base_source + " + [adjust]", &result, session.pivot_L(),
+// Writes the report of a refinement (the 3D view from `display`, else decimated here) and
+// refine.json into `out`, and prints what changed.
+void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isometry3d& base,
+                     const std::string& base_source, const std::filesystem::path& out,
+                     const DisplayJaws* display = nullptr) {
+  const CaseConfig& config = session.config();
+  SearchSummary summary{"refine", base_source + " + [adjust]", &r.result, session.pivot_L(),
                         session.jaws().upper_U.get()};
-  ReportAnalysis analysis = AnalyzePose(session, after.X_LU);
   const ReportFiles files =
-      MakeReportFiles(session, analysis, "`occlude refine` from " + base_source,
+      MakeReportFiles(session, r.analysis, "`occlude refine` from " + base_source,
                       SearchJson(summary, false), SearchHtml(summary), ReportView{display, {}});
   const json refine = {
       {"base", {{"source", base_source}, {"X_LU", json::parse(MatrixJson(base.matrix()))}}},
@@ -177,20 +185,22 @@ RefineOutcome RefineOnce(CaseSession& session, const Eigen::Isometry3d& base,
        {{"translation_mm", Vec(config.adjust.translation_mm)},
         {"rotation_deg", Vec(config.adjust.rotation_deg)}}},
       {"result",
-       {{"X_LU", json::parse(MatrixJson(after.X_LU.matrix()))},
-        {"translation_mm", Vec(absolute.translation_mm)},
-        {"rotation_deg", Vec(absolute.rotation_deg)},
-        {"status", planner::ToString(after.status)}}},
+       {{"X_LU", json::parse(MatrixJson(r.after().X_LU.matrix()))},
+        {"translation_mm", Vec(r.absolute.translation_mm)},
+        {"rotation_deg", Vec(r.absolute.rotation_deg)},
+        {"status", planner::ToString(r.after().status)}}},
       {"moved_from_base",
-       {{"translation_mm", Vec(moved.translation_mm)}, {"rotation_deg", Vec(moved.rotation_deg)}}},
+       {{"translation_mm", Vec(r.moved.translation_mm)},
+        {"rotation_deg", Vec(r.moved.rotation_deg)}}},
       {"hold",
        {{"setting", HoldSetting(config)},
-        {"held", DofList(held)},
+        {"held", DofList(r.held)},
         {"penetration_over_limit_mm",
-         std::max(0.0, after.evaluation.constrained_penetration_mm - config.max_penetration_mm)}}},
-      {"before", Metrics(before)},
-      {"adjusted", Metrics(adjusted)},
-      {"after", Metrics(after.evaluation)},
+         std::max(0.0,
+                  r.after().evaluation.constrained_penetration_mm - config.max_penetration_mm)}}},
+      {"before", Metrics(r.before)},
+      {"adjusted", Metrics(r.adjusted)},
+      {"after", Metrics(r.after().evaluation)},
       {"convention",
        "moved_from_base: about the pivot at the base pose; result: about the pivot, relative to "
        "the "
@@ -200,35 +210,34 @@ RefineOutcome RefineOnce(CaseSession& session, const Eigen::Isometry3d& base,
   std::cout << std::fixed << std::setprecision(3) << config.name << ": refined from " << base_source
             << " + adjust t " << Triple(config.adjust.translation_mm, 3) << " mm r "
             << Triple(config.adjust.rotation_deg, 2) << " deg\n"
-            << "  moved t " << Triple(moved.translation_mm, 3) << " mm r "
-            << Triple(moved.rotation_deg, 2) << " deg from the base ("
-            << planner::ToString(after.status) << ")\n"
-            << HoldSummary(config, held, after.evaluation) << "  contact " << std::setprecision(2)
-            << before.contact_area_mm2 << " -> " << after.evaluation.contact_area_mm2
-            << " mm^2, max penetration " << std::setprecision(3) << before.max_penetration_mm
-            << " -> " << after.evaluation.max_penetration_mm << " mm (constrained "
-            << after.evaluation.constrained_penetration_mm << ", limit "
+            << "  moved t " << Triple(r.moved.translation_mm, 3) << " mm r "
+            << Triple(r.moved.rotation_deg, 2) << " deg from the base ("
+            << planner::ToString(r.after().status) << ")\n"
+            << HoldSummary(config, r.held, r.after().evaluation) << "  contact "
+            << std::setprecision(2) << r.before.contact_area_mm2 << " -> "
+            << r.after().evaluation.contact_area_mm2 << " mm^2, max penetration "
+            << std::setprecision(3) << r.before.max_penetration_mm << " -> "
+            << r.after().evaluation.max_penetration_mm << " mm (constrained "
+            << r.after().evaluation.constrained_penetration_mm << ", limit "
             << config.max_penetration_mm << ")\n"
             << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
-            << NowSeconds() - start << " s wall, " << ThreadCpuSeconds() - cpu_start
+            << NowSeconds() - r.start_s << " s wall, " << ThreadCpuSeconds() - r.cpu_start_s
             << " s CPU of this thread)\n"
             << std::flush;
-  return {std::move(analysis), before,
-          after.evaluation,    moved,
-          DofList(held),       planner::ToString(after.status)};
 }
 
 // The numbers the live page lists beside refinement `save` (0 = the one at launch).
 std::string LiveNumbers(const RefineOutcome& r, int save) {
+  const planner::PoseEvaluation& after = r.after().evaluation;
   const json numbers = {{"save", save},
                         {"moved t (mm)", Triple(r.moved.translation_mm, 3)},
                         {"moved r (deg)", Triple(r.moved.rotation_deg, 2)},
-                        {"held", r.held},
+                        {"held", DofList(r.held)},
                         {"contact before (mm\u00b2)", r.before.contact_area_mm2},
-                        {"contact after (mm\u00b2)", r.after.contact_area_mm2},
+                        {"contact after (mm\u00b2)", after.contact_area_mm2},
                         {"max penetration before (mm)", r.before.max_penetration_mm},
-                        {"max penetration after (mm)", r.after.max_penetration_mm},
-                        {"status", r.status}};
+                        {"max penetration after (mm)", after.max_penetration_mm},
+                        {"status", planner::ToString(r.after().status)}};
   return numbers.dump();
 }
 
@@ -286,19 +295,26 @@ void RunRefine(const RefineArgs& args) {
     source = "the last result (" + last.string() + ")";
   }
   if (!args.watch) {
-    RefineOnce(*session, base, source, out);
+    RefineOutcome r = Refine(*session, base);
+    WriteRefinement(*session, r, base, source, out);
     return;
   }
   std::unique_ptr<RefineLivePage> live;
   if (!args.serve.empty()) live = std::make_unique<RefineLivePage>(args.bind, args.serve.front());
   const InterruptScope interrupt(live ? &live->server() : nullptr);
+  // The live page first (the surgeon sees the pose at once), then the report files.
   const auto refine = [&](const std::filesystem::path& folder, int save) {
-    if (!live) return RefineOnce(*session, base, source, folder);
-    const RefineOutcome r = RefineOnce(*session, base, source, folder, &live->Display(*session));
-    if (!live->Show(*session, r.analysis, LiveNumbers(r, save)) && save > 0) {
-      std::cerr << "occlude: the meshes changed: reload " << live->url() << "\n";
+    RefineOutcome r = Refine(*session, base);
+    if (live) {
+      const double refined_s = NowSeconds() - r.start_s;
+      if (!live->Show(*session, r.analysis, LiveNumbers(r, save)) && save > 0) {
+        std::cerr << "occlude: the meshes changed: reload " << live->url() << "\n";
+      }
+      std::cerr << std::fixed << std::setprecision(2) << "occlude: live page updated "
+                << NowSeconds() - r.start_s << " s after the refinement began (refined in "
+                << refined_s << " s)\n";
     }
-    return r;
+    WriteRefinement(*session, r, base, source, folder, live ? &live->Display(*session) : nullptr);
   };
   refine(out, 0);
   if (live) std::cerr << "occlude: live page at " << live->url() << "\n";
