@@ -281,56 +281,44 @@ std::filesystem::file_time_type ModifiedAt(const std::filesystem::path& file) {
   return ec ? std::filesystem::file_time_type::min() : t;
 }
 
-void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = LoadCaseConfig(args.config);
-  PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
-                        Eigen::Vector3d::Zero());  // settings first
-  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
-  auto session = std::make_unique<CaseSession>(config, args.memory_budget_mb);
-  Eigen::Isometry3d base = session->ConfigStartPose();
-  std::string source = "the config's [start] pose";
-  const std::filesystem::path last = out / "pose.json";
-  if (!args.from_config && std::filesystem::exists(last)) {
-    base = ReadPoseFile(last);
-    source = "the last result (" + last.string() + ")";
+// The live page of one refinement (`save` 0 = the one at launch), before its report is
+// written: the surgeon sees the pose at once.
+void ShowLive(RefineLivePage& live, const CaseSession& session, const RefineOutcome& r, int save) {
+  const double refined_s = NowSeconds() - r.start_s;
+  if (!live.Show(session, r.analysis, LiveNumbers(r, save)) && save > 0) {
+    std::cerr << "occlude: the meshes changed: reload " << live.url() << "\n";
   }
-  if (!args.watch) {
-    RefineOutcome r = Refine(*session, base);
-    WriteRefinement(*session, r, base, source, out);
-    return;
-  }
-  std::unique_ptr<RefineLivePage> live;
-  if (!args.serve.empty()) live = std::make_unique<RefineLivePage>(args.bind, args.serve.front());
-  const InterruptScope interrupt(live ? &live->server() : nullptr);
-  // The live page first (the surgeon sees the pose at once), then the report files.
+  std::cerr << std::fixed << std::setprecision(2) << "occlude: live page updated "
+            << NowSeconds() - r.start_s << " s after the refinement began (refined in " << refined_s
+            << " s)\n";
+}
+
+// --watch: refines from `base` at launch and after every save of the config until
+// --max-refinements or Ctrl-C; the live page (`live`, may be null) shows each.
+void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
+           const Eigen::Isometry3d& base, const std::string& source, RefineLivePage* live) {
+  const InterruptScope interrupt(live != nullptr ? &live->server() : nullptr);
   const auto refine = [&](const std::filesystem::path& folder, int save) {
     RefineOutcome r = Refine(*session, base);
-    if (live) {
-      const double refined_s = NowSeconds() - r.start_s;
-      if (!live->Show(*session, r.analysis, LiveNumbers(r, save)) && save > 0) {
-        std::cerr << "occlude: the meshes changed: reload " << live->url() << "\n";
-      }
-      std::cerr << std::fixed << std::setprecision(2) << "occlude: live page updated "
-                << NowSeconds() - r.start_s << " s after the refinement began (refined in "
-                << refined_s << " s)\n";
-    }
-    WriteRefinement(*session, r, base, source, folder, live ? &live->Display(*session) : nullptr);
+    if (live != nullptr) ShowLive(*live, *session, r, save);
+    WriteRefinement(*session, r, base, source, folder,
+                    live != nullptr ? &live->Display(*session) : nullptr);
   };
-  refine(out, 0);
-  if (live) std::cerr << "occlude: live page at " << live->url() << "\n";
-  std::cerr << "occlude: watching " << config.file.string()
+  const std::filesystem::path file = session->config().file;
+  refine(OutputFolder(session->config(), args.out), 0);
+  if (live != nullptr) std::cerr << "occlude: live page at " << live->url() << "\n";
+  std::cerr << "occlude: watching " << file.string()
             << " (Ctrl-C to stop); every save refines from " << source << "\n";
-  auto seen = ModifiedAt(config.file);
+  auto seen = ModifiedAt(file);
   for (int done = 1;
        (args.max_refinements == 0 || done < args.max_refinements) && !g_interrupted;) {
     std::this_thread::sleep_for(std::chrono::duration<double>(args.poll_seconds));
-    if (g_interrupted) break;
-    const auto now = ModifiedAt(config.file);
-    if (now == seen) continue;
+    const auto now = ModifiedAt(file);
+    if (g_interrupted || now == seen) continue;
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = LoadCaseConfig(config.file);
+      const CaseConfig updated = LoadCaseConfig(file);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -342,8 +330,31 @@ void RunRefine(const RefineArgs& args) {
       std::cerr << "occlude: error: " << e.what() << " (still watching)\n";
     }
   }
-  if (live) live->server().Stop();
+  if (live != nullptr) live->server().Stop();
   if (g_interrupted) std::cerr << "occlude: stopped (interrupted); the outputs are complete\n";
+}
+
+void RunRefine(const RefineArgs& args) {
+  const CaseConfig config = LoadCaseConfig(args.config);
+  PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
+                        Eigen::Vector3d::Zero());  // settings first
+  const std::filesystem::path out = PrepareCaseOutput(config, args.out);
+  std::unique_ptr<RefineLivePage> live;  // first: a refused --bind or a busy port fails at once
+  if (!args.serve.empty()) live = std::make_unique<RefineLivePage>(args.bind, args.serve.front());
+  auto session = std::make_unique<CaseSession>(config, args.memory_budget_mb);
+  Eigen::Isometry3d base = session->ConfigStartPose();
+  std::string source = "the config's [start] pose";
+  const std::filesystem::path last = out / "pose.json";
+  if (!args.from_config && std::filesystem::exists(last)) {
+    base = ReadPoseFile(last);
+    source = "the last result (" + last.string() + ")";
+  }
+  if (args.watch) {
+    Watch(args, std::move(session), base, source, live.get());
+    return;
+  }
+  RefineOutcome r = Refine(*session, base);
+  WriteRefinement(*session, r, base, source, out);
 }
 
 }  // namespace

@@ -29,8 +29,7 @@ RefineLivePage::RefineLivePage(const std::string& bind, int port) {
   } catch (const std::invalid_argument& e) {
     throw UserError("--bind " + options.address + ": " + e.what());
   } catch (const std::runtime_error& e) {
-    throw UserError("--serve " + std::to_string(port) + ": " + e.what() +
-                    "; give another port, or --serve alone for any free one");
+    throw UserError("--serve " + std::to_string(port) + ": " + e.what());
   }
 }
 
