@@ -1,4 +1,5 @@
-// `occlude refine CASE.toml [--out DIR] [--from-config] [--watch]`: interactive refinement.
+// `occlude refine CASE.toml [--out DIR] [--from-config] [--watch [--serve [PORT] [--bind ADDR]]]`:
+// interactive refinement.
 // Starts from the last result in the output folder (pose.json written by propose or refine)
 // or, without one or with --from-config, from the config's [start] pose; applies the
 // [adjust] deltas (mm, degrees about the pivot at that pose); re-optimizes locally on the
@@ -6,6 +7,11 @@
 // limit; writes the result, the report and refine.json; and prints what changed.
 // --watch keeps the trees and repeats on every save of the config file, always from the same
 // base pose (the one at launch), so editing [adjust] moves the result predictably.
+// refine.hold (default "adjusted") keeps the degrees of freedom [adjust] changes at the
+// adjusted value while the others settle. --serve [PORT] (with --watch) serves the live 3D
+// page of the latest refinement on 127.0.0.1 (--bind ADDR: another address, with a warning)
+// and pushes each one to it (cli/refine_live.h); Ctrl-C ends the watch after the refinement in
+// progress, with exit code 0.
 #include <algorithm>
 #include <array>
 #include <atomic>
