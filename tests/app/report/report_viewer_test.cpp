@@ -34,7 +34,8 @@ ViewerCase& Case() {
   static ViewerCase* c = [] {
     auto* x = new ViewerCase;
     x->config = app::ParseCaseConfig(
-        "[synthetic]\ntriangles = 5000\nseed = 1\n[report]\nimage_width_px = 300\n",
+        "[synthetic]\ntriangles = 5000\nseed = 1\n[accuracy]\nvoxel_mm = 1.0\n[report]\n"
+        "image_width_px = 300\n",
         "synthetic.toml");
     x->session = std::make_unique<app::CaseSession>(x->config);
     x->analysis =
