@@ -20,7 +20,7 @@ using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {
     "case",   "lower", "upper",  "synthetic", "accuracy", "contact", "solver",
-    "bounds", "start", "adjust", "output",    "report",   "limits"};
+    "bounds", "start", "adjust", "output",    "report",   "limits",  "refine"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
                                              "ry_deg", "rz_deg", "locked"};
@@ -67,7 +67,8 @@ std::vector<std::string> AllDottedKeys() {
           "report.map_max_mm",
           "report.map_penetration_from_mm",
           "report.image_width_px",
-          "limits.memory_budget_mb"};
+          "limits.memory_budget_mb",
+          "refine.hold"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -201,6 +202,22 @@ void ReadSolver(const Table& t, CaseConfig* c) {
   }
 }
 
+// The degrees of freedom named in t[key] (an error naming the key for an unknown name).
+std::array<bool, kNumDofs> DofMask(const Table& t, const std::string& key,
+                                   const std::vector<std::string>& names) {
+  std::array<bool, kNumDofs> mask{};
+  for (const auto& name : names) {
+    const auto it = std::find(kDofNames.begin(), kDofNames.end(), name);
+    if (it == kDofNames.end()) {
+      t.Fail(key, "'" + name +
+                      "' is not a degree of freedom; use tx, ty, tz, rx, ry, rz (did you mean '" +
+                      toml_config::ClosestKey(name, kDofNames) + "'?)");
+    }
+    mask[static_cast<std::size_t>(it - kDofNames.begin())] = true;
+  }
+  return mask;
+}
+
 void ReadBounds(const Table& t, CaseConfig* c) {
   t.AllowOnly(kBoundKeys);
   for (int d = 0; d < kNumDofs; ++d) {
@@ -221,16 +238,7 @@ void ReadBounds(const Table& t, CaseConfig* c) {
     c->bounds[static_cast<std::size_t>(d)] = {(*v)[0], (*v)[1]};
   }
   if (auto locked = t.StringArray("locked")) {
-    for (const auto& name : *locked) {
-      const auto it = std::find(kDofNames.begin(), kDofNames.end(), name);
-      if (it == kDofNames.end()) {
-        t.Fail("locked",
-               "'" + name +
-                   "' is not a degree of freedom; use tx, ty, tz, rx, ry, rz (did you mean '" +
-                   toml_config::ClosestKey(name, kDofNames) + "'?)");
-      }
-      c->locked[static_cast<std::size_t>(it - kDofNames.begin())] = true;
-    }
+    c->locked = DofMask(t, "locked", *locked);
     if (std::all_of(c->locked.begin(), c->locked.end(), [](bool b) { return b; })) {
       t.Fail("locked", "all six degrees of freedom are locked; leave at least one free");
     }
@@ -270,6 +278,26 @@ void ReadReport(const Table& t, CaseConfig* c) {
     c->report.image_width_px = static_cast<int>(*v);
 }
 
+// [refine] hold = "adjusted" | "none" | ["tx", ...].
+void ReadRefine(const Table& t, CaseConfig* c) {
+  t.AllowOnly({"hold"});
+  const toml::node* hold = t.raw().get("hold");
+  if (hold == nullptr) return;
+  if (hold->is_array()) {
+    c->refine.hold_adjusted = false;
+    c->refine.hold = DofMask(t, "hold", *t.StringArray("hold"));
+    return;
+  }
+  const std::optional<std::string> mode = hold->is_string() ? t.String("hold") : std::nullopt;
+  if (mode != "adjusted" && mode != "none") {
+    t.Fail("hold",
+           "give \"adjusted\" (hold what [adjust] changes), \"none\" (let every free degree of "
+           "freedom settle) or a list of degrees of freedom such as [\"tx\", \"rz\"]");
+  }
+  c->refine.hold_adjusted = *mode == "adjusted";
+  c->refine.hold = {};
+}
+
 void ReadAll(const Table& root, CaseConfig* c) {
   root.AllowOnly(kRootTables, AllDottedKeys());
   if (auto t = root.SubTable("case")) ReadCase(*t, c);
@@ -299,6 +327,7 @@ void ReadAll(const Table& root, CaseConfig* c) {
     c->output_dir = t->Path("folder");
   }
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
+  if (auto t = root.SubTable("refine")) ReadRefine(*t, c);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
     c->memory_budget_mb =

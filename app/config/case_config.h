@@ -25,6 +25,8 @@
 //               the pivot)  or  matrix = 4x4 rigid X_LU;  pivot_mm = [x, y, z] (default: centre
 //               of the upper arch's occlusal surface)
 //   [adjust]    translation_mm, rotation_deg: deltas applied by `refine`
+//   [refine]    hold = "adjusted" (default: the degrees of freedom [adjust] changes stay at
+//               the adjusted value while the others settle), "none", or ["tx", "rz", ...]
 //   [output]    folder = "out/case" (relative to the config file)
 //   [report]    map_max_mm = 0.5 (colour scale); map_penetration_from_mm = 0.01;
 //               image_width_px = 1000
@@ -98,6 +100,13 @@ struct ReportSettings {
   int image_width_px = 1000;
 };
 
+/// [refine]: what `refine` keeps at the adjusted pose while the other degrees of freedom
+/// settle (on top of bounds.locked).
+struct RefineSettings {
+  bool hold_adjusted = true;          ///< hold = "adjusted": those [adjust] changes (non-zero)
+  std::array<bool, kNumDofs> hold{};  ///< else these (all false for "none")
+};
+
 struct CaseConfig {
   std::filesystem::path file;  ///< the config file (absolute)
   std::string name;            ///< default: the file stem
@@ -127,6 +136,7 @@ struct CaseConfig {
 
   StartPose start;
   planner::PoseParameters adjust;
+  RefineSettings refine;
   std::optional<std::filesystem::path> output_dir;  ///< absolute when set
   ReportSettings report;
   std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget

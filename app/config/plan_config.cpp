@@ -156,4 +156,18 @@ planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config,
   return r;
 }
 
+std::array<bool, kNumDofs> RefineHeldDofs(const CaseConfig& config) {
+  std::array<bool, kNumDofs> held = config.refine.hold;
+  if (config.refine.hold_adjusted) {
+    for (int i = 0; i < 3; ++i) {
+      held[static_cast<std::size_t>(i)] = config.adjust.translation_mm[i] != 0.0;
+      held[static_cast<std::size_t>(i + 3)] = config.adjust.rotation_deg[i] != 0.0;
+    }
+  }
+  for (int i = 0; i < kNumDofs; ++i) {
+    if (config.locked[static_cast<std::size_t>(i)]) held[static_cast<std::size_t>(i)] = false;
+  }
+  return held;
+}
+
 }  // namespace occlude::app

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -27,5 +28,10 @@ planner::PlanRequest PlanRequestFromConfig(const CaseConfig& config,
 
 /// The [solver.options] keys PlanRequestFromConfig understands.
 const std::vector<std::string>& SolverOptionKeys();
+
+/// The degrees of freedom `refine` holds at the adjusted pose (refine.hold): with "adjusted"
+/// those [adjust] changes (a non-zero component), else the listed ones; bounds.locked ones
+/// are held anyway and not repeated here.
+std::array<bool, kNumDofs> RefineHeldDofs(const CaseConfig& config);
 
 }  // namespace occlude::app

@@ -52,8 +52,10 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;
   clock.Start("rendered the maps and views");
+  const DisplayJaws display = DecimateJawsForViewer(session.jaws());
+  const ReportView view{&display, ProposalsForViewer(session, display, result, analysis)};
   const ReportFiles files = MakeReportFiles(session, analysis, "proposal 1 of `occlude propose`",
-                                            SearchJson(summary, false), SearchHtml(summary));
+                                            SearchJson(summary, false), SearchHtml(summary), view);
   clock.Finish();
   std::vector<std::pair<std::string, std::string>> extra = {
       {"proposals.json", SearchJson(summary, true)}};

@@ -301,7 +301,7 @@ std::string ReportHtml(const ReportInputs& in) {
     << ". Distances in mm; X<sub>LU</sub> is the pose of the upper jaw in the lower jaw's "
        "frame.</p>\n"
     << PoseSection(in) << MetricsSection(in) << in.search_html;
-  s << "<h2>Contact maps and views</h2>\n";
+  s << in.viewer_html << "<h2>Contact maps and views</h2>\n";
   for (const auto& p : in.pictures) {
     s << "<figure><img alt=\"" << Escape(p.title) << "\" src=\"data:image/png;base64,"
       << Base64(p.png) << "\"><figcaption class=\"note\">" << Escape(p.title) << " ("

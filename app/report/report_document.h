@@ -28,6 +28,8 @@ struct ReportInputs {
   /// HTML fragment (the proposals, the points treated as scan artefacts) after the metrics.
   std::string search_json;
   std::string search_html;
+  /// The 3D view section (report/report_viewer.h), placed before the still images.
+  std::string viewer_html;
 };
 
 std::string MetricsJson(const ReportInputs& in);

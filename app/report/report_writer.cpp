@@ -11,10 +11,36 @@
 #include "report/report_images.h"
 
 namespace occlude::app {
+namespace {
+
+// The 3D view section of report.html: the view's poses, or the analysis's pose alone.
+std::string ReportViewerHtml(const CaseSession& session, const ReportAnalysis& analysis,
+                             const ReportView& view) {
+  DisplayJaws own;
+  if (view.display == nullptr) own = DecimateJawsForViewer(session.jaws());
+  const DisplayJaws& display = view.display != nullptr ? *view.display : own;
+  ViewerInputs in = ReportViewerInputs(session, display);
+  in.proposals = view.poses;
+  if (in.proposals.empty()) {
+    in.proposals.push_back(
+        ViewerProposalOf(display, analysis, "this pose", AnalysisNumbersJson(analysis)));
+  }
+  return ViewerSection(in);
+}
+
+io::VertexValues ColouredValues(const std::vector<float>& distance_mm, const ContactScale& scale) {
+  io::VertexValues v;
+  v.distance_mm = distance_mm;
+  v.rgb.reserve(distance_mm.size());
+  for (const float d : distance_mm) v.rgb.push_back(ContactColour(d, scale));
+  return v;
+}
+
+}  // namespace
 
 ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
                             const std::string& pose_source, const std::string& search_json,
-                            const std::string& search_html) {
+                            const std::string& search_html, const ReportView& view) {
   const CaseConfig& config = session.config();
   const JawPair& jaws = session.jaws();
   const double t0 = NowSeconds();
@@ -40,6 +66,9 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   in.pose_source = pose_source;
   in.search_json = search_json;
   in.search_html = search_html;
+  const double t_view = NowSeconds();
+  in.viewer_html = ReportViewerHtml(session, analysis, view);
+  analysis.timings_s.emplace_back("3D view", NowSeconds() - t_view);
   in.pictures = {{"Lower arch, occlusal contact map", png[0], "lower_map.png"},
                  {"Upper arch, occlusal contact map", png[1], "upper_map.png"},
                  {"Frontal view", png[2], "frontal.png"},
@@ -50,6 +79,10 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   out.files.emplace_back("pose.json", PoseJson(in));
   out.files.emplace_back("report.html", ReportHtml(in));
   out.upper_at_pose = jaws.upper_U->Transformed(analysis.X_LU);
+  out.lower_L = jaws.lower_L;
+  const ContactScale colours{scale.max_mm, scale.band_mm, scale.penetration_from_mm};
+  out.upper_values = ColouredValues(analysis.upper_vertex_mm, colours);
+  out.lower_values = ColouredValues(analysis.lower_vertex_mm, colours);
   return out;
 }
 
@@ -63,6 +96,8 @@ void WriteReportFiles(const std::filesystem::path& out, const ReportFiles& files
   try {
     io::WriteBinaryStl(files.upper_at_pose, out / "upper_at_pose.stl",
                        "occlude upper jaw at the report pose (frame L, mm)");
+    io::WriteColouredPly(files.upper_at_pose, files.upper_values, out / "upper_at_pose.ply");
+    if (files.lower_L) io::WriteColouredPly(*files.lower_L, files.lower_values, out / "lower.ply");
   } catch (const io::MeshError& e) {
     throw UserError(e.what());
   }

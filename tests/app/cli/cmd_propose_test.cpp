@@ -87,7 +87,9 @@ TEST(ProposeCommandTest, SameInputsSeedAndThreadsGiveByteIdenticalResults) {
   const std::string pose_a = ReadText(tmp / "a" / "pose.json");
   ASSERT_FALSE(pose_a.empty());
   EXPECT_EQ(pose_a, ReadText(tmp / "b" / "pose.json"));
-  EXPECT_EQ(ReadText(tmp / "a" / "upper_at_pose.stl"), ReadText(tmp / "b" / "upper_at_pose.stl"));
+  for (const char* file : {"upper_at_pose.stl", "upper_at_pose.ply", "lower.ply"}) {
+    EXPECT_EQ(ReadText(tmp / "a" / file), ReadText(tmp / "b" / file)) << file;
+  }
   EXPECT_EQ(WithoutTimings(tmp / "a" / "metrics.json"), WithoutTimings(tmp / "b" / "metrics.json"));
   EXPECT_EQ(ReadText(tmp / "a" / "proposals" / "proposal-1.json"),
             ReadText(tmp / "b" / "proposals" / "proposal-1.json"));

@@ -62,5 +62,52 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
       << out;  // from the same base, not cumulative
 }
 
+// The example: from the synthetic bite, [adjust] moves 0.3 mm along x. By default
+// refine holds tx at the adjusted value while the others settle; with refine.hold = "none"
+// the seat pulls the jaw back; holding ty at a pose pushed 0.5 mm into the lower jaw cannot
+// be made feasible, and the summary says by how much.
+std::string HoldConfig(const std::filesystem::path& out, const std::string& adjust,
+                       const std::string& hold) {
+  return "[synthetic]\ntriangles = 5000\n[accuracy]\nvoxel_mm = 1.0\n[report]\n"
+         "image_width_px = 300\n[adjust]\ntranslation_mm = " +
+         adjust + "\n" + hold + "[output]\nfolder = \"" + out.string() + "\"\n";
+}
+
+// The jaw's slide back along x with hold = "none" is at least this (the seat pulls it home).
+constexpr double kSlidBackMm = 0.15;
+
+TEST(RefineCommandTest, HoldKeepsTheAdjustedDofUnlessNone) {
+  test::TempDir tmp;
+  const std::string refine = "refine " + (tmp / "case.toml").string() + " --from-config";
+  Write(tmp / "case.toml", HoldConfig(tmp / "out", "[0.3, 0.0, 0.0]", ""));
+  test::CommandRun r = test::Occlude(refine);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("held tx at the adjusted value (refine.hold = adjusted"),
+            std::string::npos)
+      << r.output;
+  json out = ReadJson(tmp / "out" / "refine.json");
+  EXPECT_NEAR(out["moved_from_base"]["translation_mm"][0].get<double>(), 0.3, 0.01);
+  EXPECT_EQ(out["hold"]["held"], "tx");
+  EXPECT_TRUE(out["after"]["feasible"].get<bool>());
+
+  Write(tmp / "case.toml",
+        HoldConfig(tmp / "out", "[0.3, 0.0, 0.0]", "[refine]\nhold = \"none\"\n"));
+  r = test::Occlude(refine);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("held nothing"), std::string::npos) << r.output;
+  out = ReadJson(tmp / "out" / "refine.json");
+  EXPECT_LT(out["moved_from_base"]["translation_mm"][0].get<double>(), 0.3 - kSlidBackMm);
+
+  Write(tmp / "case.toml",
+        HoldConfig(tmp / "out", "[0.0, -0.5, 0.0]", "[refine]\nhold = [\"ty\"]\n"));
+  r = test::Occlude(refine);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("cannot be made feasible with ty held: penetration"), std::string::npos)
+      << r.output;
+  out = ReadJson(tmp / "out" / "refine.json");
+  EXPECT_NEAR(out["moved_from_base"]["translation_mm"][1].get<double>(), -0.5, 0.01);
+  EXPECT_GT(out["hold"]["penetration_over_limit_mm"].get<double>(), 0.1);
+}
+
 }  // namespace
 }  // namespace occlude::app

@@ -24,8 +24,9 @@ TEST(ReportCommand, WritesEveryFile) {
   const CommandRun r = Occlude("report " + (tmp / "case.toml").string() + " --pose " +
                                (tmp / "pushed.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* name : {"report.html", "metrics.json", "pose.json", "upper_at_pose.stl",
-                           "lower_map.png", "upper_map.png", "frontal.png", "lateral.png"}) {
+  for (const char* name :
+       {"report.html", "metrics.json", "pose.json", "upper_at_pose.stl", "upper_at_pose.ply",
+        "lower.ply", "lower_map.png", "upper_map.png", "frontal.png", "lateral.png"}) {
     EXPECT_TRUE(std::filesystem::is_regular_file(tmp / "report" / name)) << name;
   }
   const std::string metrics = ReadFileText(tmp / "report" / "metrics.json");

@@ -69,6 +69,18 @@ TEST_F(CaseConfigTest, DefaultsWithOnlyTheMeshes) {
   EXPECT_TRUE(c.region_of_interest);
 }
 
+TEST_F(CaseConfigTest, RefineHoldsTheAdjustedByDefaultNoneOrAList) {
+  EXPECT_TRUE(Load(kFiles).refine.hold_adjusted);
+  const CaseConfig none = Load(kFiles + "[refine]\nhold = \"none\"\n");
+  EXPECT_FALSE(none.refine.hold_adjusted);
+  EXPECT_EQ(none.refine.hold, (std::array<bool, app::kNumDofs>{}));
+  const CaseConfig list = Load(kFiles + "[refine]\nhold = [\"tx\", \"rz\"]\n");
+  EXPECT_FALSE(list.refine.hold_adjusted);
+  EXPECT_EQ(list.refine.hold,
+            (std::array<bool, app::kNumDofs>{true, false, false, false, false, true}));
+  EXPECT_TRUE(Load(kFiles + "[refine]\nhold = \"adjusted\"\n").refine.hold_adjusted);
+}
+
 TEST_F(CaseConfigTest, RegionOfInterestCanBeTurnedOff) {
   EXPECT_FALSE(Load(kFiles + "[accuracy]\nregion_of_interest = false\n").region_of_interest);
   EXPECT_TRUE(Load(kFiles + "[accuracy]\nregion_of_interest = true\n").region_of_interest);
@@ -275,6 +287,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"unknown_dof",
                   kFiles + "[bounds]\nlocked = [\"rzz\"]\n",
                   {"bounds.locked", "'rzz'", "'rz'"}},
+        BadConfig{"hold_word",
+                  kFiles + "[refine]\nhold = \"all\"\n",
+                  {"refine.hold", "\"adjusted\"", "\"none\""}},
+        BadConfig{"hold_dof",
+                  kFiles + "[refine]\nhold = [\"tz\", \"rxx\"]\n",
+                  {"refine.hold", "'rxx'", "'rx'"}},
         BadConfig{"missing_mesh",
                   "[lower]\nfile = \"meshes/nope.stl\"\n[upper]\nfile = \"meshes/upper.stl\"\n",
                   {"lower.file: no such file", "meshes/nope.stl"}},

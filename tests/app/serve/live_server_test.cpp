@@ -17,6 +17,7 @@
 #include <future>
 #include <thread>
 
+#include "loopback_client.h"
 #include "serve/http_head.h"
 
 namespace occlude::app {
@@ -27,41 +28,7 @@ using Clock = std::chrono::steady_clock;
 /// Every wait in these tests gives up after this long (nothing here should take a second).
 constexpr std::chrono::seconds kPatience{5};
 
-// A blocking TCP client of 127.0.0.1:port.
-class Client {
- public:
-  explicit Client(int port) : fd_(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)) {
-    sockaddr_in sa{};
-    sa.sin_family = AF_INET;
-    sa.sin_port = htons(static_cast<std::uint16_t>(port));
-    sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    connected_ = ::connect(fd_, reinterpret_cast<sockaddr*>(&sa), sizeof sa) == 0;
-  }
-  ~Client() { ::close(fd_); }
-  bool connected() const { return connected_; }
-  void Send(const std::string& bytes) { ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL); }
-  // Reads until `stop` appears in what was read, the peer closes, or kPatience passes.
-  std::string ReadUntil(const std::string& stop) {
-    const auto deadline = Clock::now() + kPatience;
-    while (received_.find(stop) == std::string::npos && !closed_ && Clock::now() < deadline) {
-      pollfd p = {fd_, POLLIN, 0};
-      if (::poll(&p, 1, 100) <= 0) continue;
-      char buffer[4096];
-      const ssize_t n = ::recv(fd_, buffer, sizeof buffer, 0);
-      if (n <= 0) closed_ = true;
-      if (n > 0) received_.append(buffer, static_cast<std::size_t>(n));
-    }
-    return received_;
-  }
-  std::string ReadAll() { return ReadUntil(std::string(1, '\0') + "never"); }
-  bool closed() const { return closed_; }
-
- private:
-  int fd_;
-  bool connected_ = false;
-  bool closed_ = false;
-  std::string received_;
-};
+using Client = test::LoopbackClient;
 
 // Waits (bounded) until the server counts `n` open event streams.
 bool WaitForClients(const LiveServer& server, std::size_t n) {

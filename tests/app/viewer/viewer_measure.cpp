@@ -13,11 +13,19 @@
 // encoded here to the page's redraw done (Date.now() there against the system
 // clock here: one machine, one clock).
 //
+// --page FILE measures an existing page instead (e.g. the report.html of `occlude propose`);
+// --live-url URL --save CONFIG --saves N opens the live page of a running `occlude refine
+// CONFIG --watch --serve` and appends a comment line to CONFIG N times, printing each save's
+// latency from the write to the page's redraw done (the refinement in between included).
+//
 //   build/bin/app_viewer_measure examples/a-bite-3shape.toml --poses 3 --out /tmp/v --live 5
+//   build/bin/app_viewer_measure --page out/a-bite/report.html --runs 3 --out /tmp/v
+//   build/bin/app_viewer_measure --live-url http://127.0.0.1:8765/ --save case.toml --saves 5
 #include <chrono>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "base/timing.h"
 #include "config/case_config.h"
@@ -42,6 +50,10 @@ struct Options {
   bool screenshots = false;
   int live_pushes = 0;
   std::string eval;  ///< a script expression to evaluate after the runs, printed as JSON
+  fs::path page;     ///< measure this page instead of building one
+  std::string live_url;
+  fs::path save;  ///< the config a running `refine --watch --serve` watches
+  int saves = 0;
 };
 
 Options Parse(int argc, char** argv) {
@@ -63,14 +75,26 @@ Options Parse(int argc, char** argv) {
       o.live_pushes = std::stoi(next());
     } else if (a == "--eval") {
       o.eval = next();
+    } else if (a == "--page") {
+      o.page = next();
+    } else if (a == "--live-url") {
+      o.live_url = next();
+    } else if (a == "--save") {
+      o.save = next();
+    } else if (a == "--saves") {
+      o.saves = std::stoi(next());
     } else {
       o.config = a;
     }
   }
-  if (o.config.empty() || o.poses < 1 || o.poses > 3 || o.runs < 1) {
+  const bool measure_only = !o.page.empty() || !o.live_url.empty();
+  if ((o.config.empty() && !measure_only) || o.poses < 1 || o.poses > 3 || o.runs < 1 ||
+      (!o.live_url.empty() && (o.save.empty() || o.saves < 1))) {
     throw std::invalid_argument(
         "usage: app_viewer_measure CONFIG [--poses 1..3] [--budget TRIANGLES] [--runs N] "
-        "[--out DIR] [--screenshots] [--live PUSHES] [--eval EXPRESSION]");
+        "[--out DIR] [--screenshots] [--live PUSHES] [--eval EXPRESSION]\n"
+        "       app_viewer_measure --page FILE [--runs N] [--out DIR] [--screenshots]\n"
+        "       app_viewer_measure --live-url URL --save CONFIG --saves N");
   }
   return o;
 }
@@ -147,6 +171,7 @@ void Measure(const fs::path& page, const Options& o) {
             << "\n";
   if (!o.eval.empty()) std::cout << "eval: " << browser->Evaluate(o.eval).dump() << "\n";
   if (!o.screenshots) return;
+  browser->Evaluate("document.getElementById('occlude-viewer').scrollIntoView()");  // in a report
   for (const char* view : {"oblique", "occlusal-lower", "occlusal-upper", "frontal", "right"}) {
     browser->Evaluate(std::string("occludeViewer.setView('") + view + "')");
     std::ofstream(o.out / (std::string("viewer-") + view + ".png"), std::ios::binary)
@@ -192,8 +217,43 @@ void MeasureLive(ViewerInputs in, const Options& o) {
   std::cout << "live page errors: " << browser->Errors().size() << "\n";
 }
 
+// Save-to-redraw latency of a running `refine --watch --serve` (see the opening comment).
+void MeasureSaves(const Options& o) {
+  std::string why;
+  auto browser = test::HeadlessBrowser::Launch(&why);
+  if (!browser) throw std::runtime_error("no headless browser: " + why);
+  browser->Navigate(o.live_url, 120);
+  if (!browser->WaitFor("document.body.dataset.viewerReady === '1' && "
+                        "document.body.dataset.viewerLive === 'open'",
+                        120)) {
+    throw std::runtime_error("the live page did not draw or connect");
+  }
+  for (int k = 1; k <= o.saves; ++k) {
+    const double saved_ms = SystemMs();
+    std::ofstream(o.save, std::ios::app) << "# app_viewer_measure save " << k << "\n";
+    const std::string done = "document.body.dataset.viewerUpdates === '" + std::to_string(k) + "'";
+    if (!browser->WaitFor(done, 300)) throw std::runtime_error("the live page did not redraw");
+    const double drawn_ms =
+        std::stod(browser->Evaluate("document.body.dataset.viewerUpdatedAt").get<std::string>());
+    std::cout << "save " << k << ": redrawn " << drawn_ms - saved_ms << " ms after the write\n";
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  std::cout << "live page errors: " << browser->Errors().size() << "\n";
+}
+
 int Run(int argc, char** argv) {
   const Options o = Parse(argc, argv);
+  if (!o.live_url.empty()) {
+    MeasureSaves(o);
+    return 0;
+  }
+  if (!o.page.empty()) {
+    fs::create_directories(o.out);
+    std::cout << "page: " << fs::file_size(o.page) << " bytes (" << fs::file_size(o.page) / 1e6
+              << " MB)\n";
+    Measure(o.page, o);
+    return 0;
+  }
   CaseSession session(LoadCaseConfig(o.config));
   io::DecimationResult lower, upper;
   ViewerInputs in;

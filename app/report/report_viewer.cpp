@@ -1,0 +1,69 @@
+// The 3D view of a report from a case session (see report_viewer.h).
+#include "report/report_viewer.h"
+
+#include <nlohmann/json.hpp>
+#include <utility>
+
+namespace occlude::app {
+
+DisplayJaws DecimateJawsForViewer(const JawPair& jaws, std::size_t max_triangles) {
+  DisplayJaws out;
+  out.lower = io::DecimateForDisplay(*jaws.lower_L, {max_triangles});
+  out.upper = io::DecimateForDisplay(*jaws.upper_U, {max_triangles});
+  return out;
+}
+
+ViewerInputs ReportViewerInputs(const CaseSession& session, const DisplayJaws& display) {
+  const CaseConfig& config = session.config();
+  const collision::ArchFrame& arch = session.arch();
+  ViewerInputs in;
+  in.lower_L = &display.lower.mesh;
+  in.upper_U = &display.upper.mesh;
+  in.axes = {arch.occlusal_L, arch.anterior_L, arch.lateral_L};
+  in.scale = {config.report.map_max_mm, config.contact_band_mm,
+              config.report.map_penetration_from_mm};
+  in.title = "3D view: " + config.name;
+  return in;
+}
+
+ViewerProposal ViewerProposalOf(const DisplayJaws& display, const ReportAnalysis& analysis,
+                                std::string label, std::string numbers_json) {
+  ViewerProposal p;
+  p.label = std::move(label);
+  p.X_LU = analysis.X_LU;
+  p.numbers_json = std::move(numbers_json);
+  p.lower_distance_mm = io::ValuesAtKeptVertices(display.lower, analysis.lower_vertex_mm);
+  p.upper_distance_mm = io::ValuesAtKeptVertices(display.upper, analysis.upper_vertex_mm);
+  return p;
+}
+
+std::string AnalysisNumbersJson(const ReportAnalysis& analysis) {
+  const nlohmann::json numbers = {{"contact area (mm\u00b2)", analysis.oracle.contact_area_mm2},
+                                  {"contact spots", analysis.spots.size()},
+                                  {"max penetration (mm)", analysis.oracle.max_penetration_mm}};
+  return numbers.dump();
+}
+
+std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const DisplayJaws& display,
+                                               const planner::PlanResult& result,
+                                               const ReportAnalysis& best) {
+  std::vector<ViewerProposal> out;
+  for (std::size_t k = 0; k < result.proposals.size(); ++k) {
+    const planner::Proposal& p = result.proposals[k];
+    const nlohmann::ordered_json numbers = {
+        {"contact area (mm\u00b2)", p.evaluation.contact_area_mm2},
+        {"max penetration (mm)", p.evaluation.max_penetration_mm},
+        {"constrained penetration (mm)", p.evaluation.constrained_penetration_mm},
+        {"seat cost", p.seat_cost},
+        {"status", planner::ToString(p.status)}};
+    const std::string label = "proposal " + std::to_string(k + 1);
+    if (k == 0) {
+      out.push_back(ViewerProposalOf(display, best, label, numbers.dump()));
+    } else {
+      out.push_back(ViewerProposalOf(display, AnalyzePose(session, p.X_LU), label, numbers.dump()));
+    }
+  }
+  return out;
+}
+
+}  // namespace occlude::app

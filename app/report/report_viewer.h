@@ -1,0 +1,51 @@
+// The 3D view of a report (viewer/viewer_page.h) from a case session: both jaws decimated for
+// display, each pose's per-vertex distances of the report analysis carried to the display
+// vertices, the contact scale of the config and the standard views along the arch frame. Used
+// by report.html (report, propose, refine) and by the live page of `refine --watch --serve`.
+//
+// Frames and units: the display lower in L, the display upper in U (the session's frames at
+// the reference), every pose X_LU; mm.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "occlude/io/display_decimation.h"
+#include "occlude/planner/plan.h"
+#include "report/report_analysis.h"
+#include "viewer/viewer_page.h"
+
+namespace occlude::app {
+
+/// Triangles per jaw in the 3D view at most (two jaws: a few hundred thousand in all).
+inline constexpr std::size_t kViewerTrianglesPerJaw = 100000;
+
+/// Both jaws of a session decimated for display (deterministic; a fifth of a second per
+/// 150k-triangle jaw). The source meshes must outlive nothing: the results own their meshes.
+struct DisplayJaws {
+  io::DecimationResult lower;  ///< in L
+  io::DecimationResult upper;  ///< in U
+};
+DisplayJaws DecimateJawsForViewer(const JawPair& jaws,
+                                  std::size_t max_triangles = kViewerTrianglesPerJaw);
+
+/// The view's meshes, axes and scale (no proposal yet); points into `display`.
+ViewerInputs ReportViewerInputs(const CaseSession& session, const DisplayJaws& display);
+
+/// The pose of `analysis` for the view: its X_LU and its vertex distances at the display
+/// vertices; `numbers_json` a JSON object of what to list beside it (see ViewerProposal).
+ViewerProposal ViewerProposalOf(const DisplayJaws& display, const ReportAnalysis& analysis,
+                                std::string label, std::string numbers_json);
+
+/// The numbers the view lists for an analysis: contact area, spots, maximum penetration.
+std::string AnalysisNumbersJson(const ReportAnalysis& analysis);
+
+/// The K proposals of a search for the view ("proposal 1".. in rank order), each with its
+/// contact, penetration, seat cost and status; the first from `best` (the analysis of
+/// proposals[0]), the others analysed here on the session's finest oracle.
+std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const DisplayJaws& display,
+                                               const planner::PlanResult& result,
+                                               const ReportAnalysis& best);
+
+}  // namespace occlude::app
