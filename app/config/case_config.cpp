@@ -20,7 +20,7 @@ using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {
     "case",   "lower", "upper",  "synthetic", "accuracy", "contact", "solver",
-    "bounds", "start", "adjust", "output",    "report",   "limits"};
+    "bounds", "start", "adjust", "output",    "report",   "limits",  "landmarks"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
                                              "ry_deg", "rz_deg", "locked"};
@@ -67,7 +67,8 @@ std::vector<std::string> AllDottedKeys() {
           "report.map_max_mm",
           "report.map_penetration_from_mm",
           "report.image_width_px",
-          "limits.memory_budget_mb"};
+          "limits.memory_budget_mb",
+          "landmarks.file"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -270,6 +271,12 @@ void ReadReport(const Table& t, CaseConfig* c) {
     c->report.image_width_px = static_cast<int>(*v);
 }
 
+void ReadLandmarks(const Table& t, CaseConfig* c) {
+  t.AllowOnly({"file"});
+  c->landmarks_file = t.Path("file");
+  if (c->landmarks_file) CheckFile(t, "file", *c->landmarks_file);
+}
+
 void ReadAll(const Table& root, CaseConfig* c) {
   root.AllowOnly(kRootTables, AllDottedKeys());
   if (auto t = root.SubTable("case")) ReadCase(*t, c);
@@ -299,6 +306,7 @@ void ReadAll(const Table& root, CaseConfig* c) {
     c->output_dir = t->Path("folder");
   }
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
+  if (auto t = root.SubTable("landmarks")) ReadLandmarks(*t, c);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
     c->memory_budget_mb =

@@ -4,6 +4,9 @@
 
 #include <optional>
 
+#include "base/user_error.h"
+#include "occlude/io/landmark_file.h"
+
 namespace occlude::app {
 
 CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given) {
@@ -24,11 +27,20 @@ analysis::Relationships RelationshipsAt(const CaseAnalysis& a, const Eigen::Isom
                                         lower_frame_L);
 }
 
-std::vector<io::Landmark> GivenAtReference(const JawPair& pair, std::vector<io::Landmark> given) {
+std::vector<io::Landmark> GivenAtReference(const Eigen::Isometry3d& X_LU_ref,
+                                           std::vector<io::Landmark> given) {
   for (io::Landmark& l : given) {
-    if (l.jaw == io::Jaw::kUpper) l.p = pair.X_LU_ref * l.p;
+    if (l.jaw == io::Jaw::kUpper) l.p = X_LU_ref * l.p;
   }
   return given;
+}
+
+std::vector<io::Landmark> ReadGivenLandmarks(const std::filesystem::path& file) {
+  try {
+    return io::ReadLandmarkFile(file);
+  } catch (const io::LandmarkFileError& e) {
+    throw UserError(e.what());
+  }
 }
 
 }  // namespace occlude::app

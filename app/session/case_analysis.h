@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <vector>
 
 #include "analysis/arch_analysis.h"
@@ -33,7 +34,12 @@ CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& g
 analysis::Relationships RelationshipsAt(const CaseAnalysis& a, const Eigen::Isometry3d& X_LU);
 
 /// Given landmarks of a pair's files re-expressed for the pair AtReference(pair): the upper
-/// ones moved by pair.X_LU_ref (they move with the upper jaw), the lower ones as they are.
-std::vector<io::Landmark> GivenAtReference(const JawPair& pair, std::vector<io::Landmark> given);
+/// ones moved by the pair's X_LU_ref (they move with the upper jaw), the lower ones as they are.
+std::vector<io::Landmark> GivenAtReference(const Eigen::Isometry3d& X_LU_ref,
+                                           std::vector<io::Landmark> given);
+
+/// io::ReadLandmarkFile(file) with its error (one line naming the file, line and field) as a
+/// UserError.
+std::vector<io::Landmark> ReadGivenLandmarks(const std::filesystem::path& file);
 
 }  // namespace occlude::app

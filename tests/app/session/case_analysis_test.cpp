@@ -7,9 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <fstream>
+#include <string>
 #include <vector>
 
+#include "base/user_error.h"
+#include "config/case_config.h"
+#include "occlude/io/landmark_file.h"
 #include "occlude/io/synthetic_jaws.h"
+#include "session/case_session.h"
 #include "test_common.h"
 
 namespace occlude::test {
@@ -137,7 +143,8 @@ TEST(CaseAnalysisTest, OneGivenLandmarkReplacesOnlyItsDetectedOne) {
 TEST(CaseAnalysisTest, GivenUpperLandmarksFollowThePairAtItsReference) {
   const Fixture& f = Synthetic();
   const app::JawPair at_ref = app::AtReference(f.pair);
-  const std::vector<io::Landmark> given = app::GivenAtReference(f.pair, f.design.landmarks);
+  const std::vector<io::Landmark> given =
+      app::GivenAtReference(f.pair.X_LU_ref, f.design.landmarks);
   ASSERT_EQ(given.size(), f.design.landmarks.size());
   const analysis::Relationships moved =
       app::RelationshipsAt(app::AnalyzeCase(at_ref, given), Eigen::Isometry3d::Identity());
@@ -146,6 +153,43 @@ TEST(CaseAnalysisTest, GivenUpperLandmarksFollowThePairAtItsReference) {
   EXPECT_NEAR(Mm(moved.overjet), Mm(original.overjet), kExactMm * 1e3);
   EXPECT_NEAR(Mm(moved.molar[0].offset), Mm(original.molar[0].offset), kExactMm * 1e3);
   EXPECT_NEAR(Mm(moved.midline_deviation), Mm(original.midline_deviation), kExactMm * 1e3);
+}
+
+// A synthetic case config naming `landmarks` (text) as its [landmarks] file.
+app::CaseConfig ConfigWithLandmarks(const TempDir& tmp, const std::string& landmarks) {
+  std::ofstream(tmp / "given.csv") << landmarks;
+  std::ofstream(tmp / "case.toml")
+      << "[synthetic]\ntriangles = " << kTriangles << "\nseed = " << kSeed
+      << "\n[landmarks]\nfile = \"given.csv\"\n";
+  return app::LoadCaseConfig(tmp / "case.toml");
+}
+
+TEST(CaseAnalysisTest, TheSessionAppliesTheConfigsLandmarksMovedWithTheUpperJaw) {
+  TempDir tmp;
+  const Fixture& f = Synthetic();
+  app::CaseSession session(ConfigWithLandmarks(tmp, io::FormatLandmarkFile(f.design.landmarks)));
+  const app::CaseAnalysis& a = session.Analysis();
+  EXPECT_TRUE(a.has_given_landmarks);
+  // The session works at the reference: the designed bite is X_LU = identity.
+  const analysis::Relationships r = app::RelationshipsAt(a, Eigen::Isometry3d::Identity());
+  const io::SyntheticRelationships& d = f.design.relationships;
+  EXPECT_NEAR(Mm(r.overjet), d.overjet_mm, kFrameFitMm);
+  EXPECT_NEAR(Mm(r.overbite), d.overbite_mm, kFrameFitMm);
+  EXPECT_NEAR(Mm(r.molar[1].offset), d.molar_mm.left, kFrameFitMm);
+}
+
+TEST(CaseAnalysisTest, ABadLandmarkFileIsOneLineNamingFileLineAndField) {
+  TempDir tmp;
+  try {
+    app::CaseSession session(
+        ConfigWithLandmarks(tmp, "jaw,tooth,type,x_mm,y_mm,z_mm\nupper,41,mesial,0,0,0\n"));
+    ADD_FAILURE() << "no error";
+  } catch (const app::UserError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("given.csv: line 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("tooth"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 }  // namespace
