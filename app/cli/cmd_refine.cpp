@@ -1,4 +1,5 @@
-// `occlude refine CASE.toml [--out DIR] [--from-config] [--watch]`: interactive refinement.
+// `occlude refine CASE.toml [--out DIR] [--from-config] [--watch] [--landmarks FILE]`:
+// interactive refinement.
 // Starts from the last result in the output folder (pose.json written by propose or refine)
 // or, without one or with --from-config, from the config's [start] pose; applies the
 // [adjust] deltas (mm, degrees about the pivot at that pose); re-optimizes locally on the
@@ -23,6 +24,7 @@
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "config/pose_file.h"
+#include "report/relationships_table.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
@@ -37,6 +39,7 @@ using nlohmann::json;
 struct RefineArgs {
   std::string config;
   std::string out;
+  std::string landmarks;
   bool from_config = false;
   bool watch = false;
   int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
@@ -57,6 +60,15 @@ std::string Triple(const Eigen::Vector3d& v, int digits) {
   s << std::fixed << std::setprecision(digits) << "(" << v.x() << ", " << v.y() << ", " << v.z()
     << ")";
   return s.str();
+}
+
+// "  clinical: <measure>: before -> after" lines, base pose to result.
+std::string RelationshipLines(const analysis::Relationships& before,
+                              const analysis::Relationships& after) {
+  std::string lines;
+  for (const std::string& l : RelationshipChanges(before, after))
+    lines += "  clinical: " + l + "\n";
+  return lines;
 }
 
 // One refinement from `base`; writes the outputs and prints the changes.
@@ -87,6 +99,7 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
 
   SearchSummary summary{"refine", base_source + " + [adjust]", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};
+  summary.analysis = &session.Analysis();
   ReportAnalysis analysis = AnalyzePose(session, after.X_LU);
   const ReportFiles files =
       MakeReportFiles(session, analysis, "`occlude refine` from " + base_source,
@@ -124,6 +137,7 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
             << after.evaluation.max_penetration_mm << " mm (constrained "
             << after.evaluation.constrained_penetration_mm << ", limit "
             << config.max_penetration_mm << ")\n"
+            << RelationshipLines(RelationshipsAt(session.Analysis(), base), analysis.relationships)
             << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
             << NowSeconds() - start << " s wall, " << ThreadCpuSeconds() - cpu_start
             << " s CPU of this thread)\n"
@@ -137,7 +151,7 @@ std::filesystem::file_time_type ModifiedAt(const std::filesystem::path& file) {
 }
 
 void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = LoadCaseConfig(args.config);
+  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
@@ -161,7 +175,7 @@ void RunRefine(const RefineArgs& args) {
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = LoadCaseConfig(config.file);
+      const CaseConfig updated = WithLandmarksOption(LoadCaseConfig(config.file), args.landmarks);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -185,6 +199,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddLandmarksOption(cmd, &args->landmarks);
   cmd->add_flag("--from-config", args->from_config,
                 "Start from the config's [start] pose, not the last result");
   cmd->add_flag("--watch", args->watch,

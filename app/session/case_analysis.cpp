@@ -27,6 +27,29 @@ analysis::Relationships RelationshipsAt(const CaseAnalysis& a, const Eigen::Isom
                                         lower_frame_L);
 }
 
+std::vector<analysis::ArchLandmark> LandmarksInL(const CaseAnalysis& a,
+                                                 const Eigen::Isometry3d& X_LU) {
+  std::vector<analysis::ArchLandmark> out = a.lower_L.landmarks;
+  for (analysis::ArchLandmark l : a.upper_U.landmarks) {
+    l.landmark.p = X_LU * l.landmark.p;
+    out.push_back(l);
+  }
+  return out;
+}
+
+analysis::ArchFrame ViewFrame(const CaseAnalysis& a, const analysis::Relationships& r,
+                              const Eigen::Isometry3d& X_LU) {
+  if (!r.frame_source.empty()) return r.frame_L;
+  analysis::ArchFrame f;
+  if (a.upper_U.arch_curve_J.empty()) return f;
+  const analysis::ArchFrame& u = a.upper_U.frame;
+  f.origin_J = X_LU * u.origin_J;
+  f.lateral_J = X_LU.linear() * u.lateral_J;
+  f.anterior_J = X_LU.linear() * u.anterior_J;
+  f.occlusal_J = -(X_LU.linear() * u.occlusal_J);  // the upper's occlusal side faces down
+  return f;
+}
+
 std::vector<io::Landmark> GivenAtReference(const Eigen::Isometry3d& X_LU_ref,
                                            std::vector<io::Landmark> given) {
   for (io::Landmark& l : given) {

@@ -33,6 +33,16 @@ CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& g
 /// given, else the lower arch frame, as ComputeRelationships decides).
 analysis::Relationships RelationshipsAt(const CaseAnalysis& a, const Eigen::Isometry3d& X_LU);
 
+/// Every landmark of both jaws with its point in L with the upper jaw at X_LU: the lower ones
+/// first, then the upper ones moved by X_LU, each jaw in its analysis's order.
+std::vector<analysis::ArchLandmark> LandmarksInL(const CaseAnalysis& a,
+                                                 const Eigen::Isometry3d& X_LU);
+
+/// A frame in L to look at the arches in: the relationships' frame when there is one, else the
+/// upper arch frame at X_LU (anatomical: occlusal lower -> upper), else L's axes.
+analysis::ArchFrame ViewFrame(const CaseAnalysis& a, const analysis::Relationships& r,
+                              const Eigen::Isometry3d& X_LU);
+
 /// Given landmarks of a pair's files re-expressed for the pair AtReference(pair): the upper
 /// ones moved by the pair's X_LU_ref (they move with the upper jaw), the lower ones as they are.
 std::vector<io::Landmark> GivenAtReference(const Eigen::Isometry3d& X_LU_ref,
