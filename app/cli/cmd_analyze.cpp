@@ -87,6 +87,7 @@ void AnalyzeConfig(const AnalyzeArgs& args, double start) {
   in.jaws = &session.jaws();
   in.analysis = &session.Analysis();
   in.X_LU = pose_file ? X_LU_file : session.ConfigStartPose();
+  in.image_width_px = config.report.image_width_px;
   Write(in, out, start);
 }
 

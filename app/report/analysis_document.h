@@ -30,7 +30,7 @@ struct AnalysisInputs {
   const JawPair* jaws = nullptr;  ///< lower in L, upper in U: the frames of `analysis`
   const CaseAnalysis* analysis = nullptr;
   Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
-  int image_width_px = 1400;
+  int image_width_px = 1000;  ///< of landmarks.png
 };
 
 struct AnalysisFiles {
