@@ -36,8 +36,20 @@ struct AnalyzeArgs {
   std::string out;
 };
 
-std::string PoseFileSource(const std::string& pose) {
-  return "pose file " + std::filesystem::absolute(pose).lexically_normal().string();
+// The --pose file, read before any work (given = false without one).
+struct PoseOption {
+  bool given = false;
+  Eigen::Isometry3d X_LU = Eigen::Isometry3d::Identity();
+  std::string source;
+};
+
+PoseOption ReadPoseOption(const std::string& pose) {
+  PoseOption p;
+  if (pose.empty()) return p;
+  p.given = true;
+  p.X_LU = ReadPoseFile(pose);
+  p.source = "pose file " + std::filesystem::absolute(pose).lexically_normal().string();
+  return p;
 }
 
 // The case folder's landmark file: --landmarks, else DIR/landmarks.csv when present.
@@ -75,18 +87,16 @@ void Write(const AnalysisInputs& in, const std::filesystem::path& out, double st
 
 void AnalyzeConfig(const AnalyzeArgs& args, double start) {
   const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
-  const bool pose_file = !args.pose.empty();
-  const Eigen::Isometry3d X_LU_file =
-      pose_file ? ReadPoseFile(args.pose) : Eigen::Isometry3d::Identity();
+  const PoseOption pose = ReadPoseOption(args.pose);
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
   CaseSession session(config);
   AnalysisInputs in;
   in.case_name = config.name;
-  in.pose_source = pose_file ? PoseFileSource(args.pose) : "start pose of the config";
+  in.pose_source = pose.given ? pose.source : "start pose of the config";
   in.landmarks_source = config.landmarks_file ? config.landmarks_file->string() : "";
   in.jaws = &session.jaws();
   in.analysis = &session.Analysis();
-  in.X_LU = pose_file ? X_LU_file : session.ConfigStartPose();
+  in.X_LU = pose.given ? pose.X_LU : session.ConfigStartPose();
   in.image_width_px = config.report.image_width_px;
   Write(in, out, start);
 }
@@ -95,9 +105,7 @@ void AnalyzeCaseFolder(const AnalyzeArgs& args, double start) {
   if (args.out.empty()) {
     throw UserError("--out: give the output folder (with --case there is no config to name one)");
   }
-  const bool pose_file = !args.pose.empty();
-  const Eigen::Isometry3d X_LU_file =
-      pose_file ? ReadPoseFile(args.pose) : Eigen::Isometry3d::Identity();
+  const PoseOption pose = ReadPoseOption(args.pose);
   const std::optional<std::filesystem::path> landmarks = CaseLandmarks(args);
   const std::vector<io::Landmark> given =
       landmarks ? ReadGivenLandmarks(*landmarks) : std::vector<io::Landmark>{};
@@ -106,11 +114,11 @@ void AnalyzeCaseFolder(const AnalyzeArgs& args, double start) {
   const CaseAnalysis analysis = AnalyzeCase(pair, given);
   AnalysisInputs in;
   in.case_name = pair.name;
-  in.pose_source = pose_file ? PoseFileSource(args.pose) : "the registered bite (as scanned)";
+  in.pose_source = pose.given ? pose.source : "the registered bite (as scanned)";
   in.landmarks_source = landmarks ? landmarks->string() : "";
   in.jaws = &pair;
   in.analysis = &analysis;
-  in.X_LU = pose_file ? X_LU_file : pair.X_LU_ref;
+  in.X_LU = pose.given ? pose.X_LU : pair.X_LU_ref;
   Write(in, args.out, start);
 }
 

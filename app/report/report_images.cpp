@@ -335,7 +335,8 @@ cv::Mat LandmarkLegend(int width_px) {
   std::string names;
   for (int t = 0; t < io::kNumLandmarkTypes; ++t) {
     const auto type = static_cast<io::LandmarkType>(t);
-    names += std::string(t ? ", " : "") + TypeAbbreviation(type) + " " + io::ToString(type);
+    names +=
+        std::string(names.empty() ? "" : ", ") + TypeAbbreviation(type) + " " + io::ToString(type);
     if (t == 6 || t == io::kNumLandmarkTypes - 1) {
       Text(&m, names, {14, t == 6 ? 56 : 82}, 0.45, kGrey);
       names.clear();
