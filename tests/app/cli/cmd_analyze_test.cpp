@@ -2,8 +2,9 @@
 // analysis.json against the library's answer (a case session of the same config, in this
 // process) field by field; landmarks.png by its pixels (a marker of the detected or given colour
 // at every landmark's pixel); given landmarks from the case folder, the config key and
-// --landmarks (which overrides both); a jaw without teeth is a warning and the rest is written;
-// a bad landmark file is one line, a non-zero exit and no analysis.json.
+// --landmarks (which overrides the key); the upper landmarks moving with --pose; a jaw without
+// teeth is a warning and the rest is written; bad inputs are one line, a non-zero exit and no
+// analysis.json.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,34 +113,27 @@ bool PixelNear(const cv::Mat& bgr, const json& px, const int (&rgb)[3]) {
   return false;
 }
 
-TEST(AnalyzeCommand, CaseFolderLandmarksAreGivenAndDrawnAsSuch) {
+TEST(AnalyzeCommand, CaseFolderLandmarksAreGivenDrawnAsSuchAndMoveWithThePose) {
   TempDir tmp;
   ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
   std::ofstream(tmp / "case" / "landmarks.csv") << DesignedRows(6);
-  const CommandRun r =
-      Occlude("analyze --case " + (tmp / "case").string() + " --out " + (tmp / "out").string());
+  std::ofstream(tmp / "moved.json") << R"({"X_LU": [[1,0,0,0],[0,1,0,0.5],[0,0,1,2],[0,0,0,1]]})";
+  const std::string run = "analyze --case " + (tmp / "case").string() + " --out ";
+  const CommandRun r = Occlude(run + (tmp / "bite").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const json j = ReadJson(tmp / "out" / "analysis.json");
-  EXPECT_EQ(GivenCount(j), 6);
-  const cv::Mat png = cv::imread((tmp / "out" / "landmarks.png").string(), cv::IMREAD_COLOR);
+  const json bite = ReadJson(tmp / "bite" / "analysis.json");
+  EXPECT_EQ(GivenCount(bite), 6);
+  const cv::Mat png = cv::imread((tmp / "bite" / "landmarks.png").string(), cv::IMREAD_COLOR);
   ASSERT_FALSE(png.empty());
   int missing = 0;
-  for (const json& l : j["landmarks"]) {
+  for (const json& l : bite["landmarks"]) {
     if (!PixelNear(png, l["png_px"], l["source"] == "given" ? kGiven : kDetected)) ++missing;
   }
   EXPECT_EQ(missing, 0);
-}
-
-TEST(AnalyzeCommand, TheUpperLandmarksMoveWithThePose) {
-  TempDir tmp;
-  ASSERT_EQ(Occlude("synth --triangles 5000 --out " + (tmp / "case").string()).exit_code, 0);
-  std::ofstream(tmp / "moved.json") << R"({"X_LU": [[1,0,0,0],[0,1,0,0.5],[0,0,1,2],[0,0,0,1]]})";
-  const std::string run = "analyze --case " + (tmp / "case").string() + " --out ";
-  ASSERT_EQ(Occlude(run + (tmp / "bite").string()).exit_code, 0);
+  // At a pose 0.5 mm up and 2 mm forward the upper landmarks move by it, the lower ones stay.
   ASSERT_EQ(Occlude(run + (tmp / "moved").string() + " --pose " + (tmp / "moved.json").string())
                 .exit_code,
             0);
-  const json bite = ReadJson(tmp / "bite" / "analysis.json");
   const json moved = ReadJson(tmp / "moved" / "analysis.json");
   ASSERT_EQ(bite["landmarks"].size(), moved["landmarks"].size());
   for (std::size_t i = 0; i < bite["landmarks"].size(); ++i) {
@@ -154,7 +148,7 @@ TEST(AnalyzeCommand, TheUpperLandmarksMoveWithThePose) {
               2.0, 0.05);
 }
 
-TEST(AnalyzeCommand, TheLandmarksOptionOverridesTheConfigKeyAndTheCaseFolder) {
+TEST(AnalyzeCommand, TheLandmarksOptionOverridesTheConfigKey) {
   TempDir tmp;
   std::ofstream(tmp / "key.csv") << DesignedRows(3);
   std::ofstream(tmp / "option.csv") << DesignedRows(5);
@@ -187,13 +181,13 @@ TEST(AnalyzeCommand, AJawWithoutTeethIsAWarningAndTheRestIsWritten) {
   EXPECT_TRUE(std::filesystem::is_regular_file(tmp / "out" / "landmarks.png"));
 }
 
-struct BadRun {
+struct AnalyzeBadRun {
   const char* name;
   std::string args;  // after "analyze " ({T} = the temporary folder)
   const char* expected;
 };
 
-class AnalyzeBadInputTest : public ::testing::TestWithParam<BadRun> {};
+class AnalyzeBadInputTest : public ::testing::TestWithParam<AnalyzeBadRun> {};
 
 TEST_P(AnalyzeBadInputTest, OneLineNonZeroExitNoAnalysis) {
   TempDir tmp;
@@ -208,14 +202,17 @@ TEST_P(AnalyzeBadInputTest, OneLineNonZeroExitNoAnalysis) {
 INSTANTIATE_TEST_SUITE_P(
     Analyze, AnalyzeBadInputTest,
     ::testing::Values(
-        BadRun{"bad_landmark_type", "{T}/case.toml --landmarks {T}/bad.csv --out {T}/out",
-               "bad.csv: line 3: type"},
-        BadRun{"missing_landmark_file", "{T}/case.toml --landmarks {T}/none.csv --out {T}/out",
-               "none.csv: no such file"},
-        BadRun{"neither_config_nor_case", "--out {T}/out", "give either a case config"},
-        BadRun{"both_config_and_case", "{T}/case.toml --case {T} --out {T}/out", "not both"},
-        BadRun{"case_without_out", "--case {T}", "--out: give the output folder"}),
-    [](const ::testing::TestParamInfo<BadRun>& param) { return std::string(param.param.name); });
+        AnalyzeBadRun{"bad_landmark_type", "{T}/case.toml --landmarks {T}/bad.csv --out {T}/out",
+                      "bad.csv: line 3: type"},
+        AnalyzeBadRun{"missing_landmark_file",
+                      "{T}/case.toml --landmarks {T}/none.csv --out {T}/out",
+                      "none.csv: no such file"},
+        AnalyzeBadRun{"neither_config_nor_case", "--out {T}/out", "give either a case config"},
+        AnalyzeBadRun{"both_config_and_case", "{T}/case.toml --case {T} --out {T}/out", "not both"},
+        AnalyzeBadRun{"case_without_out", "--case {T}", "--out: give the output folder"}),
+    [](const ::testing::TestParamInfo<AnalyzeBadRun>& param) {
+      return std::string(param.param.name);
+    });
 
 }  // namespace
 }  // namespace occlude::test

@@ -28,11 +28,11 @@ constexpr int kMarkerWindowPx = 1;
 constexpr double kProjectionPx = 0.01;
 constexpr double kJsonMm = 1e-9;
 
-struct Fixture {
+struct AnalysisFixture {
   app::JawPair pair = app::SyntheticJawPair(kTriangles, 1);
   io::SyntheticJawPair design = io::MakeSyntheticJawPair({kTriangles, 1});
   app::CaseAnalysis analysis;
-  Fixture() {
+  AnalysisFixture() {
     // Two given landmarks, one replacing a detected one and one of the upper jaw.
     std::vector<io::Landmark> given;
     for (const io::Landmark& l : design.landmarks) {
@@ -57,8 +57,8 @@ struct Fixture {
   }
 };
 
-const Fixture& Shared() {
-  static const Fixture f;
+const AnalysisFixture& SharedAnalysis() {
+  static const AnalysisFixture f;
   return f;
 }
 
@@ -76,7 +76,7 @@ json AnalysisJsonOf(const app::AnalysisFiles& files) {
 }
 
 TEST(AnalysisDocument, TheJsonHoldsTheLibrarysAnswerFieldByField) {
-  const Fixture& f = Shared();
+  const AnalysisFixture& f = SharedAnalysis();
   const app::AnalysisFiles files = app::MakeAnalysisFiles(f.Inputs());
   const json j = AnalysisJsonOf(files);
   const analysis::Relationships r = app::RelationshipsAt(f.analysis, f.pair.X_LU_ref);
@@ -142,7 +142,7 @@ double ProjectionResidualPx(const std::vector<analysis::ArchLandmark>& landmarks
 }
 
 TEST(AnalysisDocument, TheImageShowsAMarkerOfTheRightKindAtEveryLandmark) {
-  const Fixture& f = Shared();
+  const AnalysisFixture& f = SharedAnalysis();
   const std::vector<analysis::ArchLandmark> landmarks =
       app::LandmarksInL(f.analysis, f.pair.X_LU_ref);
   const analysis::Relationships r = app::RelationshipsAt(f.analysis, f.pair.X_LU_ref);
