@@ -28,7 +28,8 @@ namespace {
 
 using nlohmann::json;
 
-const std::string kConfig = "[synthetic]\ntriangles = 5000\nseed = 1\n";
+const std::string kConfig =
+    "[synthetic]\ntriangles = 5000\nseed = 1\n[report]\nimage_width_px = 400\n";
 constexpr double kJsonMm = 1e-9;
 // Marker colours of report/report_images.h (RGB): detected, given.
 constexpr int kDetected[3] = {0, 102, 204};
