@@ -261,6 +261,10 @@ std::optional<ArchCurve> FitArchCurve(const HeightMap& map, const std::vector<do
     top[static_cast<std::size_t>(b)] = *std::max_element(bin.h.begin(), bin.h.end());
   }
   auto [first, last] = LongestRun(ok);
+  if (first < 0) {  // no bin holds enough crown cells (a tiny or flat mesh)
+    *why = "no arch of crowns found (too few crown cells about its centre)";
+    return std::nullopt;
+  }
   // The band's ends: trim bins much lighter than the run's median (gingiva behind the molars).
   std::vector<double> run_weights(weight.begin() + std::max(first, 0), weight.begin() + last + 1);
   const double light = kEndWeightShare * Quantile(run_weights, 0.5);

@@ -117,7 +117,7 @@ void RunSweepDemo(const DemoArgs& args) {
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.json", json.str());
   WriteFileAtomic(std::filesystem::path(args.out) / "demo.txt", table.str());
   std::cout << "demo: wrote " << args.out
-            << "/{upper.stl, lower.stl, truth.json, demo.json, demo.txt}\n";
+            << "/{upper.stl, lower.stl, truth.json, landmarks.csv, demo.json, demo.txt}\n";
 }
 
 void RunDemo(const DemoArgs& args) {

@@ -1,4 +1,4 @@
-// `occlude propose CASE.toml [--out DIR]`: the automated occlusion proposal
+// `occlude propose CASE.toml [--out DIR] [--landmarks FILE]`: the automated occlusion proposal
 // (report/proposal_report.h): searches from the config's start pose with the config's solver
 // and writes the K proposals and the full report of the best.
 #include <memory>
@@ -15,11 +15,13 @@ namespace {
 struct ProposeArgs {
   std::string config;
   std::string out;
+  std::string landmarks;
   double memory_budget_mb = 0;
 };
 
 void RunPropose(const ProposeArgs& args) {
-  ProposeAndReport(LoadCaseConfig(args.config), args.out, args.memory_budget_mb);
+  ProposeAndReport(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.out,
+                   args.memory_budget_mb);
 }
 
 }  // namespace
@@ -32,6 +34,7 @@ void AddProposeCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddLandmarksOption(cmd, &args->landmarks);
   cmd->callback([args] { RunPropose(*args); });
 }
 

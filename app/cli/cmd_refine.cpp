@@ -1,4 +1,5 @@
-// `occlude refine CASE.toml [--out DIR] [--from-config] [--watch [--serve [PORT] [--bind ADDR]]]`:
+// `occlude refine CASE.toml [--out DIR] [--from-config] [--landmarks FILE]
+//   [--watch [--serve [PORT] [--bind ADDR]]]`:
 // interactive refinement.
 // Starts from the last result in the output folder (pose.json written by propose or refine)
 // or, without one or with --from-config, from the config's [start] pose; applies the
@@ -34,6 +35,7 @@
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "config/pose_file.h"
+#include "report/relationships_table.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
@@ -48,6 +50,7 @@ using nlohmann::json;
 struct RefineArgs {
   std::string config;
   std::string out;
+  std::string landmarks;
   bool from_config = false;
   bool watch = false;
   int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
@@ -70,6 +73,15 @@ std::string Triple(const Eigen::Vector3d& v, int digits) {
   s << std::fixed << std::setprecision(digits) << "(" << v.x() << ", " << v.y() << ", " << v.z()
     << ")";
   return s.str();
+}
+
+// "  clinical: <measure>: before -> after" lines, base pose to result.
+std::string RelationshipLines(const analysis::Relationships& before,
+                              const analysis::Relationships& after) {
+  std::string lines;
+  for (const std::string& l : RelationshipChanges(before, after))
+    lines += "  clinical: " + l + "\n";
+  return lines;
 }
 
 // "tx, rz" of the set entries, or "nothing".
@@ -182,6 +194,7 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
   const CaseConfig& config = session.config();
   SearchSummary summary{"refine", base_source + " + [adjust]", &r.result, session.pivot_L(),
                         session.jaws().upper_U.get()};
+  summary.analysis = &session.Analysis();
   const ReportFiles files =
       MakeReportFiles(session, r.analysis, "`occlude refine` from " + base_source,
                       SearchJson(summary, false), SearchHtml(summary), ReportView{display, {}});
@@ -226,6 +239,8 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
             << r.after().evaluation.max_penetration_mm << " mm (constrained "
             << r.after().evaluation.constrained_penetration_mm << ", limit "
             << config.max_penetration_mm << ")\n"
+            << RelationshipLines(RelationshipsAt(session.Analysis(), base),
+                                 r.analysis.relationships)
             << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
             << NowSeconds() - r.start_s << " s wall, " << ThreadCpuSeconds() - r.cpu_start_s
             << " s CPU of this thread)\n"
@@ -324,7 +339,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = LoadCaseConfig(file);
+      const CaseConfig updated = WithLandmarksOption(LoadCaseConfig(file), args.landmarks);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -341,7 +356,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
 }
 
 void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = LoadCaseConfig(args.config);
+  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
@@ -373,6 +388,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddLandmarksOption(cmd, &args->landmarks);
   cmd->add_flag("--from-config", args->from_config,
                 "Start from the config's [start] pose, not the last result");
   auto* watch = cmd->add_flag("--watch", args->watch,

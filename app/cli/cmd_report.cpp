@@ -1,5 +1,5 @@
-// `occlude report CASE.toml [--pose FILE] [--out DIR]`: evaluates one pose of a case (the
-// config's start pose, or a pose file) and writes what a surgeon attaches to a plan:
+// `occlude report CASE.toml [--pose FILE] [--out DIR] [--landmarks FILE]`: evaluates one pose
+// of a case (the config's start pose, or a pose file) and writes what a surgeon attaches to a plan:
 // report.html (self-contained), the contact maps and views as PNG, metrics.json, pose.json
 // and the upper jaw at the pose as STL (report_writer.h: nothing half-written).
 #include <iostream>
@@ -24,12 +24,13 @@ struct ReportArgs {
   std::string config;
   std::string pose;
   std::string out;
+  std::string landmarks;
   double memory_budget_mb = 0;
 };
 
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
-  const CaseConfig config = LoadCaseConfig(args.config);
+  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
   // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
   // optional's aligned Eigen payload being used uninitialized.)
   const bool pose_file = !args.pose.empty();
@@ -70,6 +71,7 @@ void AddReportCommand(CLI::App& app) {
                   "Pose file (JSON with a 4x4 \"X_LU\"); default: the config's start pose");
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddLandmarksOption(cmd, &args->landmarks);
   cmd->callback([args] { RunReport(*args); });
 }
 

@@ -1,6 +1,7 @@
 // `occlude synth`: writes the procedural synthetic jaw pair as a case folder
 // (upper.stl and lower.stl in the lower jaw's frame at the ground-truth bite,
-// like the real cases, plus truth.json with the pose and the known contacts).
+// like the real cases, plus truth.json with the pose and the known contacts, and landmarks.csv
+// with the designed landmarks, which `occlude analyze --case` picks up).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -32,7 +33,9 @@ void AddSynthCommand(CLI::App& app) {
     WriteSyntheticCase(pair, options, args->out);
     std::cout << "synth: wrote " << args->out << "/upper.stl (" << pair.upper_U.num_triangles()
               << " triangles), lower.stl (" << pair.lower_L.num_triangles()
-              << " triangles) and truth.json (" << pair.contacts.size() << " known contacts)\n";
+              << " triangles), truth.json (" << pair.contacts.size()
+              << " known contacts) and landmarks.csv (" << pair.landmarks.size()
+              << " designed landmarks)\n";
   });
 }
 

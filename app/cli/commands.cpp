@@ -10,6 +10,7 @@ void AddCommands(CLI::App& app) {
   AddProposeCommand(app);
   AddRefineCommand(app);
   AddReportCommand(app);
+  AddAnalyzeCommand(app);
   AddBenchCommand(app);
   AddValidateCommand(app);
 }

@@ -17,6 +17,7 @@ void AddCollideCommand(CLI::App& app);
 void AddProposeCommand(CLI::App& app);
 void AddRefineCommand(CLI::App& app);
 void AddReportCommand(CLI::App& app);
+void AddAnalyzeCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
 void AddValidateCommand(CLI::App& app);
 

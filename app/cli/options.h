@@ -1,10 +1,13 @@
 // Option checks shared by the subcommands: lengths in mm within a range (the message says what
-// the option must be), and `--memory-budget-mb` (session/memory_guard.h).
+// the option must be), `--memory-budget-mb` (session/memory_guard.h) and `--landmarks`.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+
+#include "config/case_config.h"
 
 namespace occlude::app {
 
@@ -27,6 +30,19 @@ inline CLI::Validator MmBetween(double lo, bool lo_inclusive, double hi, const s
 inline CLI::Validator PositiveMm() { return MmBetween(0.0, false, 1e6, "a positive length in mm"); }
 /// A contact band.
 inline CLI::Validator BandMm() { return MmBetween(0.0, true, 5.0, "a band in mm between 0 and 5"); }
+
+/// Adds `--landmarks FILE` (given landmarks, overriding the config's [landmarks] file) to `cmd`.
+inline void AddLandmarksOption(CLI::App* cmd, std::string* file) {
+  cmd->add_option("--landmarks", *file,
+                  "Landmark file (CSV jaw,tooth,type,x_mm,y_mm,z_mm; each jaw in its mesh's "
+                  "frame) overriding detected landmarks; default: the config's [landmarks] file");
+}
+
+/// `config` with --landmarks `file` (when given) as its landmarks_file.
+inline CaseConfig WithLandmarksOption(CaseConfig config, const std::string& file) {
+  if (!file.empty()) config.landmarks_file = std::filesystem::absolute(file).lexically_normal();
+  return config;
+}
 
 /// Adds `--memory-budget-mb MB` (a positive number; 0 = not given) to `cmd`.
 inline void AddMemoryBudgetOption(CLI::App* cmd, double* budget_mb) {

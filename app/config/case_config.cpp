@@ -19,8 +19,8 @@ namespace {
 using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {
-    "case",   "lower", "upper",  "synthetic", "accuracy", "contact", "solver",
-    "bounds", "start", "adjust", "output",    "report",   "limits",  "refine"};
+    "case",  "lower",  "upper",  "synthetic", "accuracy", "contact", "solver",   "bounds",
+    "start", "adjust", "output", "report",    "limits",   "refine",  "landmarks"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
                                              "ry_deg", "rz_deg", "locked"};
@@ -68,7 +68,8 @@ std::vector<std::string> AllDottedKeys() {
           "report.map_penetration_from_mm",
           "report.image_width_px",
           "limits.memory_budget_mb",
-          "refine.hold"};
+          "refine.hold",
+          "landmarks.file"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -298,6 +299,12 @@ void ReadRefine(const Table& t, CaseConfig* c) {
   c->refine.hold = {};
 }
 
+void ReadLandmarks(const Table& t, CaseConfig* c) {
+  t.AllowOnly({"file"});
+  c->landmarks_file = t.Path("file");
+  if (c->landmarks_file) CheckFile(t, "file", *c->landmarks_file);
+}
+
 void ReadAll(const Table& root, CaseConfig* c) {
   root.AllowOnly(kRootTables, AllDottedKeys());
   if (auto t = root.SubTable("case")) ReadCase(*t, c);
@@ -328,6 +335,7 @@ void ReadAll(const Table& root, CaseConfig* c) {
   }
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
   if (auto t = root.SubTable("refine")) ReadRefine(*t, c);
+  if (auto t = root.SubTable("landmarks")) ReadLandmarks(*t, c);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
     c->memory_budget_mb =

@@ -32,6 +32,8 @@
 //               image_width_px = 1000
 //   [limits]    memory_budget_mb (what the trees and fields may take; default a quarter
 //               of the physical memory; --memory-budget-mb overrides)
+//   [landmarks] file = "landmarks.csv" (given landmarks overriding detected ones, the format
+//               of occlude/io/landmark_file.h; --landmarks overrides)
 //
 // Poses: X_LU is the pose of the upper mesh as given (frame U) in the lower's frame L;
 // translation/rotation parameters follow planner::ComposePose about the pivot with the
@@ -140,6 +142,8 @@ struct CaseConfig {
   std::optional<std::filesystem::path> output_dir;  ///< absolute when set
   ReportSettings report;
   std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget
+  /// [landmarks] file (absolute, checked to exist), or a command's --landmarks.
+  std::optional<std::filesystem::path> landmarks_file;
 
   /// The finest voxel size the oracle uses: voxel_mm, or chosen for accuracy_mm.
   double VoxelSizeMm() const;

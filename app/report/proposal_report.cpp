@@ -48,6 +48,7 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   const planner::Proposal& best = result.proposals.front();
   SearchSummary summary{"propose", "the config's [start] pose", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};
+  summary.analysis = &session.Analysis();
   ReportAnalysis analysis = AnalyzePose(session, best.X_LU);
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;

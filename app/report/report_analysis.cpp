@@ -261,6 +261,11 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
       VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper, *jaws.upper_U, a.reach_mm);
   Attribute(jaws, maps.lower, &a);
   a.timings_s.emplace_back("map distances", NowSeconds() - t0);
+
+  t0 = NowSeconds();
+  a.relationships = RelationshipsAt(session.Analysis(), X_LU);
+  a.timings_s.emplace_back("clinical relationships (arch analysis once per session)",
+                           NowSeconds() - t0);
   return a;
 }
 

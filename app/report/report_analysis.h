@@ -1,7 +1,8 @@
 // The numbers behind a report at one pose: the oracle's contact and penetration
 // totals, contact spots (clusters of contact samples) with the upper and lower
 // tooth each lies on, per-tooth totals for both arches, and the signed distance
-// of every vertex of each arch to the opposing arch (for the colour maps).
+// of every vertex of each arch to the opposing arch (for the colour maps), and the clinical
+// relationships (../shared/docs/clinical.md) of the session's arch analysis at the pose.
 //
 // Frames and units: X_LU as everywhere (upper mesh frame U in L), points in L,
 // mm and mm^2. Vertex distances are exact (closest triangle, pseudo-normal sign)
@@ -14,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/relationships.h"
 #include "config/case_config.h"
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/oracle.h"
@@ -55,6 +57,7 @@ struct ReportAnalysis {
   std::vector<std::pair<std::string, double>> timings_s;  ///< step -> wall seconds
   std::vector<OracleModel>
       models;  ///< the session's oracles (region of interest, bytes, build time)
+  analysis::Relationships relationships;  ///< clinical relationships at X_LU (session Analysis())
 };
 
 /// Evaluates the pose on the session's finest oracle and map fields (built on first use:

@@ -8,6 +8,8 @@
 
 #include "base/json_values.h"
 #include "base/output_files.h"
+#include "report/relationships_json_internal.h"
+#include "report/relationships_table.h"
 
 namespace occlude::app {
 namespace {
@@ -264,6 +266,7 @@ std::string MetricsJson(const ReportInputs& in) {
                     {"deep_samples", o.deep_samples}}},
                   {"teeth", teeth},
                   {"spots", spots},
+                  {"relationships", RelationshipsJson(a.relationships)},
                   {"settings", Settings(*in.config, a)},
                   {"meshes",
                    {{"lower_triangles", in.jaws->lower_L->num_triangles()},
@@ -300,9 +303,12 @@ std::string ReportHtml(const ReportInputs& in) {
     << "</h1>\n<p class=\"note\">occlude 0.1.0, " << stamp
     << ". Distances in mm; X<sub>LU</sub> is the pose of the upper jaw in the lower jaw's "
        "frame.</p>\n"
-    << PoseSection(in) << MetricsSection(in) << in.search_html;
-  s << in.viewer_html << "<h2>Contact maps and views</h2>\n";
-  for (const auto& p : in.pictures) {
+    << PoseSection(in) << MetricsSection(in) << RelationshipsHtml(in.analysis->relationships)
+    << in.search_html;
+  s << in.viewer_html
+    << "<h2>Contact maps and views</h2>
+       ";
+      for (const auto& p : in.pictures) {
     s << "<figure><img alt=\"" << Escape(p.title) << "\" src=\"data:image/png;base64,"
       << Base64(p.png) << "\"><figcaption class=\"note\">" << Escape(p.title) << " ("
       << Escape(p.file) << ")</figcaption></figure>\n";

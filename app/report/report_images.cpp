@@ -266,6 +266,111 @@ render::Image RenderSideView(SideView side, const JawPair& jaws, const ReportAna
   return FromMat(canvas);
 }
 
+namespace {
+
+// Short names of the landmark types for labels (the legend spells them out).
+const char* TypeAbbreviation(io::LandmarkType type) {
+  static const char* const kNames[io::kNumLandmarkTypes] = {
+      "m", "d", "f", "l", "ie", "ct", "bc", "lc", "mb", "mbc", "db", "ml", "dl", "cf"};
+  return kNames[static_cast<int>(type)];
+}
+
+void LandmarkMarker(cv::Mat* m, cv::Point c, bool given) {
+  constexpr int kRadius = 5;
+  if (given) {
+    const cv::Rect box(c.x - kRadius, c.y - kRadius, 2 * kRadius + 1, 2 * kRadius + 1);
+    cv::rectangle(*m, box, Cv(kGivenLandmarkColour), cv::FILLED);
+    cv::rectangle(*m, box, kBlack, 1);
+  } else {
+    cv::circle(*m, c, kRadius + 1, kBlack, cv::FILLED, cv::LINE_AA);
+    cv::circle(*m, c, kRadius, Cv(kDetectedLandmarkColour), cv::FILLED, cv::LINE_AA);
+  }
+}
+
+// One arch's panel: the mesh shaded in its tint, its landmarks' labels, then their markers (on
+// top, so no label hides one); returns the panel and fills `px` of its landmarks.
+cv::Mat LandmarkPanel(bool upper, const JawPair& jaws, const Eigen::Isometry3d& X_LU,
+                      const std::vector<analysis::ArchLandmark>& landmarks_L,
+                      const collision::ArchFrame& frame, int width_px,
+                      std::vector<Eigen::Vector2d>* px) {
+  const io::TriangleMesh& mesh = upper ? *jaws.upper_U : *jaws.lower_L;
+  const Eigen::Isometry3d X = upper ? X_LU : Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> pts;
+  AddPoints(mesh, X, &pts);
+  const Eigen::Vector3d view = upper ? frame.occlusal_L : Eigen::Vector3d(-frame.occlusal_L);
+  render::OrthoView v = FitToWidth(view, frame.anterior_L, pts, width_px, 420, 1600);
+  const render::Rgb tint = upper ? kUpperTint : kLowerTint;
+  const render::Image img = Draw(v, {{&mesh, X, nullptr, 0}}, [&](int, float) { return tint; });
+  cv::Mat panel(img.height + kTitleHeight, width_px, CV_8UC3, kWhite);
+  ToMat(img).copyTo(panel(cv::Rect(0, kTitleHeight, img.width, img.height)));
+  v.offset_px = Eigen::Vector2d(0, kTitleHeight);
+  Text(&panel, upper ? "Upper arch from below" : "Lower arch from above", {14, 30}, 0.72, kBlack,
+       2);
+  CentredText(&panel, "anterior", {width_px / 2.0, kTitleHeight + 14.0}, 0.55, kGrey, 1, false);
+  SideLabels(&panel, v, frame, 0, kTitleHeight, width_px, img.height);
+  const io::Jaw jaw = upper ? io::Jaw::kUpper : io::Jaw::kLower;
+  std::vector<std::pair<cv::Point, bool>> markers;
+  for (std::size_t i = 0; i < landmarks_L.size(); ++i) {
+    const io::Landmark& l = landmarks_L[i].landmark;
+    if (l.jaw != jaw) continue;
+    (*px)[i] = v.ToPixel(l.p);
+    const cv::Point c(static_cast<int>(std::lround((*px)[i].x())),
+                      static_cast<int>(std::lround((*px)[i].y())));
+    Text(&panel, std::to_string(l.tooth_fdi) + " " + TypeAbbreviation(l.type), c + cv::Point(8, 4),
+         0.36, kBlack, 1, true);
+    markers.emplace_back(c, landmarks_L[i].source == analysis::LandmarkSource::kGiven);
+  }
+  for (const auto& [c, given] : markers) LandmarkMarker(&panel, c, given);
+  ScaleBar(&panel, {14, kTitleHeight + img.height - 16}, v.px_per_mm);
+  return panel;
+}
+
+// The markers and the type abbreviations.
+cv::Mat LandmarkLegend(int width_px) {
+  cv::Mat m(96, width_px, CV_8UC3, kWhite);
+  LandmarkMarker(&m, {24, 20}, false);
+  Text(&m, "detected", {38, 25}, 0.5, kBlack);
+  LandmarkMarker(&m, {144, 20}, true);
+  Text(&m, "given (landmark file)", {158, 25}, 0.5, kBlack);
+  std::string names;
+  for (int t = 0; t < io::kNumLandmarkTypes; ++t) {
+    const auto type = static_cast<io::LandmarkType>(t);
+    names +=
+        std::string(names.empty() ? "" : ", ") + TypeAbbreviation(type) + " " + io::ToString(type);
+    if (t == 6 || t == io::kNumLandmarkTypes - 1) {
+      Text(&m, names, {14, t == 6 ? 56 : 82}, 0.45, kGrey);
+      names.clear();
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+LandmarkImage RenderLandmarkMap(const JawPair& jaws, const Eigen::Isometry3d& X_LU,
+                                const std::vector<analysis::ArchLandmark>& landmarks_L,
+                                const analysis::ArchFrame& frame_L, int width_px) {
+  collision::ArchFrame frame;
+  frame.origin_L = frame_L.origin_J;
+  frame.occlusal_L = frame_L.occlusal_J;
+  frame.anterior_L = frame_L.anterior_J;
+  frame.lateral_L = frame_L.lateral_J;
+  LandmarkImage out;
+  out.px.assign(landmarks_L.size(), Eigen::Vector2d::Zero());
+  const cv::Mat lower = LandmarkPanel(false, jaws, X_LU, landmarks_L, frame, width_px, &out.px);
+  std::vector<Eigen::Vector2d> upper_px(landmarks_L.size(), Eigen::Vector2d::Zero());
+  const cv::Mat upper = LandmarkPanel(true, jaws, X_LU, landmarks_L, frame, width_px, &upper_px);
+  for (std::size_t i = 0; i < landmarks_L.size(); ++i) {
+    if (landmarks_L[i].landmark.jaw == io::Jaw::kUpper) {
+      out.px[i] = upper_px[i] + Eigen::Vector2d(0, lower.rows);
+    }
+  }
+  cv::Mat canvas;
+  cv::vconcat(std::vector<cv::Mat>{lower, upper, LandmarkLegend(width_px)}, canvas);
+  out.image = FromMat(canvas);
+  return out;
+}
+
 std::string EncodePng(const render::Image& image) {
   cv::Mat bgr;
   cv::cvtColor(ToMat(image), bgr, cv::COLOR_RGB2BGR);

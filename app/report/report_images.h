@@ -6,7 +6,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "analysis/arch_analysis.h"
 #include "report/render_raster.h"
 #include "report/report_analysis.h"
 #include "report/report_colours.h"
@@ -31,6 +33,24 @@ MapImage RenderContactMap(Arch arch, const JawPair& jaws, const ReportAnalysis& 
 /// surfaces in the map colours.
 render::Image RenderSideView(SideView side, const JawPair& jaws, const ReportAnalysis& analysis,
                              const render::MapScale& scale, int width_px);
+
+/// Marker colours of landmarks.png: detected landmarks are filled circles, given ones filled
+/// squares, each with a dark outline.
+inline constexpr render::Rgb kDetectedLandmarkColour = {0, 102, 204};
+inline constexpr render::Rgb kGivenLandmarkColour = {230, 110, 0};
+
+struct LandmarkImage {
+  render::Image image;
+  std::vector<Eigen::Vector2d> px;  ///< per landmark, where its marker is centred
+};
+
+/// landmarks.png: both arches from the occlusal side, stacked (the lower from above, the upper
+/// at X_LU from below; `frame_L` orients them, anterior up, the patient's sides marked), each of
+/// `landmarks_L` (points in L at the pose) drawn as a marker labelled with its tooth and type,
+/// and a legend of the markers and type abbreviations. `width_px` is the image width.
+LandmarkImage RenderLandmarkMap(const JawPair& jaws, const Eigen::Isometry3d& X_LU,
+                                const std::vector<analysis::ArchLandmark>& landmarks_L,
+                                const analysis::ArchFrame& frame_L, int width_px);
 
 /// PNG file contents of an image. Throws std::runtime_error if encoding fails.
 std::string EncodePng(const render::Image& image);

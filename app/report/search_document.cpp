@@ -7,6 +7,7 @@
 
 #include "base/json_values.h"
 #include "base/text_format.h"
+#include "report/relationships_json_internal.h"
 
 namespace occlude::app {
 namespace {
@@ -65,6 +66,8 @@ std::string SearchJson(const SearchSummary& s, bool with_timings) {
                   {"teeth", teeth},
                   {"outliers", outliers}};
     if (with_timings) entry["cpu_seconds"] = p.cpu_seconds;
+    if (s.analysis)
+      entry["relationships"] = RelationshipsJson(RelationshipsAt(*s.analysis, p.X_LU));
     proposals.push_back(entry);
   }
   json j = {

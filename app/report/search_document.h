@@ -9,6 +9,7 @@
 
 #include "occlude/io/triangle_mesh.h"
 #include "occlude/planner/plan.h"
+#include "session/case_analysis.h"
 
 namespace occlude::app {
 
@@ -18,6 +19,7 @@ struct SearchSummary {
   const planner::PlanResult* result = nullptr;
   Eigen::Vector3d pivot_L = Eigen::Vector3d::Zero();  ///< pivot at the pose as given (U = L)
   const io::TriangleMesh* upper_U = nullptr;          ///< for tooth numbers of parts
+  const CaseAnalysis* analysis = nullptr;  ///< when set, each proposal's clinical relationships
 };
 
 /// JSON object text: settings used, starts run, evaluations, times, and one entry per

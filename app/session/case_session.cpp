@@ -94,8 +94,11 @@ std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw
 CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : config_(config) {
   StepClock clock;
   clock.Start("loaded the meshes");
-  jaws_ = AtReference(LoadConfigJaws(config_));
+  JawPair loaded = LoadConfigJaws(config_);
+  X_LU_ref_loaded_ = loaded.X_LU_ref;
+  jaws_ = AtReference(std::move(loaded));
   clock.Finish();
+  ReadGiven();
   const std::string lower_name = JawName(config_, config_.lower),
                     upper_name = JawName(config_, config_.upper);
   for (const std::string& w : JawPairWarnings(
@@ -245,6 +248,33 @@ bool SameRegionInputs(const CaseConfig& a, const CaseConfig& b) {
 }
 
 }  // namespace
+
+void CaseSession::ReadGiven() {
+  given_.clear();
+  if (config_.landmarks_file) {
+    given_ = GivenAtReference(X_LU_ref_loaded_, ReadGivenLandmarks(*config_.landmarks_file));
+  }
+}
+
+void CaseSession::UpdateSettings(const CaseConfig& other) {
+  config_ = other;
+  ReadGiven();
+  analysis_.reset();
+}
+
+const CaseAnalysis& CaseSession::Analysis() {
+  if (analysis_) return *analysis_;
+  if (!detected_) {
+    StepClock clock;
+    clock.Start("analysed both arches");
+    detected_ = std::make_unique<CaseAnalysis>(AnalyzeCase(jaws_));
+  }
+  analysis_ = std::make_unique<CaseAnalysis>(*detected_);
+  analysis::ApplyGivenLandmarks(given_, &analysis_->lower_L);
+  analysis::ApplyGivenLandmarks(given_, &analysis_->upper_U);
+  analysis_->has_given_landmarks = !given_.empty();
+  return *analysis_;
+}
 
 bool CaseSession::Reusable(const CaseConfig& other) const {
   auto same_files = [](const std::optional<JawFiles>& a, const std::optional<JawFiles>& b) {

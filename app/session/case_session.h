@@ -20,6 +20,7 @@
 #include "occlude/collision/memory_estimate.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/planner/request.h"
+#include "session/case_analysis.h"
 #include "session/jaw_pair.h"
 #include "session/session_region.h"
 
@@ -84,8 +85,13 @@ class CaseSession {
   /// sizes, sample spacing and pivot); otherwise a new session is needed.
   bool Reusable(const CaseConfig& other) const;
   /// Takes the non-model settings of `other` (band, limits, solver, bounds, start, adjust,
-  /// output, report) after Reusable(other).
-  void UpdateSettings(const CaseConfig& other) { config_ = other; }
+  /// output, report, landmarks: the given landmarks are read again) after Reusable(other).
+  void UpdateSettings(const CaseConfig& other);
+
+  /// The arch analysis of both jaws (built on first use, the detection kept across
+  /// UpdateSettings) with the config's given landmarks (landmarks_file, read when the session
+  /// is made: a bad file throws UserError there), upper ones moved with the upper jaw.
+  const CaseAnalysis& Analysis();
 
  private:
   CaseConfig config_;
@@ -106,6 +112,11 @@ class CaseSession {
                                                     const collision::OracleOptions& options,
                                                     const std::string& what);
   collision::RegionOfInterestRequest RegionRequest(double band_mm) const;
+  // The arch analysis: given landmarks in the session's frames, detection, and both combined.
+  std::vector<io::Landmark> given_;
+  Eigen::Isometry3d X_LU_ref_loaded_ = Eigen::Isometry3d::Identity();
+  std::unique_ptr<CaseAnalysis> detected_, analysis_;
+  void ReadGiven();
 };
 
 }  // namespace occlude::app

@@ -7,7 +7,9 @@
 
 #include "base/output_files.h"
 #include "base/user_error.h"
+#include "occlude/io/landmark_file.h"
 #include "occlude/io/mesh_io.h"
+#include "session/case_analysis.h"
 
 namespace occlude::app {
 namespace {
@@ -56,6 +58,8 @@ void WriteSyntheticCase(const io::SyntheticJawPair& pair, const io::SyntheticJaw
     throw UserError(e.what());
   }
   WriteFileAtomic(dir / "truth.json", TruthJson(pair, options));
+  WriteFileAtomic(dir / "landmarks.csv",
+                  io::FormatLandmarkFile(GivenAtReference(pair.X_LU, pair.landmarks)));
 }
 
 }  // namespace occlude::app

@@ -11,7 +11,8 @@ namespace occlude::app {
 /// MakeSyntheticJawPair, with an invalid option reported as a UserError.
 io::SyntheticJawPair MakeSyntheticOrExplain(const io::SyntheticJawOptions& options);
 
-/// Writes upper.stl, lower.stl (both in L at the bite) and truth.json to `dir`.
+/// Writes upper.stl, lower.stl (both in L at the bite), truth.json and landmarks.csv (the
+/// designed landmarks of both jaws, in L at the bite) to `dir`.
 void WriteSyntheticCase(const io::SyntheticJawPair& pair, const io::SyntheticJawOptions& options,
                         const std::filesystem::path& dir);
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -158,6 +159,17 @@ std::vector<Landmark> ReadLandmarkFile(const std::filesystem::path& file) {
   bytes << in.rdbuf();
   if (in.bad()) Fail(file, 0, "could not be read to the end");
   return ParseLandmarkFile(bytes.str(), file);
+}
+
+std::string FormatLandmarkFile(const std::vector<Landmark>& landmarks) {
+  std::string text = std::string(kLandmarkFileHeader) + "\n";
+  char row[160];
+  for (const Landmark& l : landmarks) {
+    std::snprintf(row, sizeof row, "%s,%d,%s,%.6f,%.6f,%.6f\n", ToString(l.jaw), l.tooth_fdi,
+                  ToString(l.type), l.p.x(), l.p.y(), l.p.z());
+    text += row;
+  }
+  return text;
 }
 
 }  // namespace occlude::io

@@ -1,6 +1,6 @@
-// The landmark file reader: a well-formed file (blank lines, CRLF, byte-order mark, spaces
-// around fields), the c-cases' files when present, and every kind of bad file rejected with one
-// line naming the file, the line and the field.
+// The landmark file reader and writer: a well-formed file (blank lines, CRLF, byte-order mark,
+// spaces around fields), the c-cases' files when present, and every kind of bad file rejected with
+// one line naming the file, the line and the field; formatted landmarks read back.
 #include "occlude/io/landmark_file.h"
 
 #include <gtest/gtest.h>
@@ -37,6 +37,20 @@ TEST(LandmarkFileTest, AcceptsCrLfAndByteOrderMarkAndAHeaderOnly) {
   for (char c : std::string(kGood)) crlf += (c == '\n') ? std::string("\r\n") : std::string(1, c);
   EXPECT_EQ(ParseLandmarkFile(crlf, "crlf.csv").size(), 2u);
   EXPECT_TRUE(ParseLandmarkFile("jaw,tooth,type,x_mm,y_mm,z_mm\n", "h.csv").empty());
+}
+
+TEST(LandmarkFileTest, FormattedLandmarksReadBack) {
+  const std::vector<Landmark> l = ParseLandmarkFile(kGood, "good.csv");
+  const std::string text = FormatLandmarkFile(l);
+  EXPECT_EQ(text.substr(0, text.find('\n')), kLandmarkFileHeader);
+  const std::vector<Landmark> back = ParseLandmarkFile(text, "formatted.csv");
+  ASSERT_EQ(back.size(), l.size());
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    EXPECT_EQ(back[i].jaw, l[i].jaw);
+    EXPECT_EQ(back[i].tooth_fdi, l[i].tooth_fdi);
+    EXPECT_EQ(back[i].type, l[i].type);
+    EXPECT_LT((back[i].p - l[i].p).norm(), 1e-6);
+  }
 }
 
 TEST(LandmarkFileTest, ReadsAFileFromDisk) {

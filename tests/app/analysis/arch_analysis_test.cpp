@@ -347,6 +347,15 @@ TEST(ArchAnalysis, AMeshWithoutTeethIsAnErrorResult) {
   const ArchAnalysis sphere = AnalyzeArch(test::MakeSphere({0, 0, 0}, 20, 24, 48), Jaw::kLower);
   EXPECT_FALSE(sphere.ok());
   EXPECT_TRUE(sphere.teeth.empty());
+  // A single triangle and a jaw-sized box in metres (a few hundredths of a millimetre): too
+  // few crown cells for any arch, an error result rather than an exception.
+  io::TriangleMesh triangle;
+  triangle.vertices = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
+  triangle.triangles = {{0, 1, 2}};
+  EXPECT_FALSE(AnalyzeArch(triangle, Jaw::kLower).ok());
+  const ArchAnalysis metres = AnalyzeArch(
+      test::MakeBox(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.04, 0.03, 0.01)), Jaw::kLower);
+  EXPECT_NE(metres.error.find("no tooth"), std::string::npos) << metres.error;
 }
 
 TEST(ArchAnalysis, OptionsOutOfRangeThrowNamingTheOption) {

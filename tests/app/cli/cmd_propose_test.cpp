@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_files.h"
 #include "case_run.h"
 #include "config/pose_file.h"
 #include "run_occlude.h"
@@ -38,6 +39,12 @@ TEST(ProposeCommandTest, FindsTheBiteAndWritesProposalsAndReport) {
   EXPECT_GT(proposals["proposals"][0]["contact_area_mm2"].get<double>(), 1.0);
   const json metrics = ReadJson(tmp / "out" / "metrics.json");
   EXPECT_EQ(metrics["search"]["command"], "propose");
+  // The clinical relationships of each proposal; the report's are those of proposal 1.
+  for (const json& p : proposals["proposals"])
+    EXPECT_TRUE(p["relationships"].contains("overjet_mm"));
+  EXPECT_EQ(metrics["relationships"], proposals["proposals"][0]["relationships"]);
+  EXPECT_NE(test::ReadFileText(tmp / "out" / "report.html").find("<h2>Clinical relationships</h2>"),
+            std::string::npos);
   EXPECT_NE(r.output.find("report of #1"), std::string::npos) << r.output;
 }
 

@@ -24,6 +24,9 @@ TEST(RefineCommandTest, AppliesTheAdjustmentWithALockedDofAndReports) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("moved t (0.300,"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("contact"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  clinical: overjet: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  clinical: molar relationship, right: "), std::string::npos)
+      << r.output;
   const json refine = ReadJson(tmp / "out" / "refine.json");
   EXPECT_NEAR(refine["moved_from_base"]["translation_mm"][0].get<double>(), 0.3,
               1e-6);  // locked at the adjustment

@@ -2,9 +2,11 @@
 // would, capturing its exit code and its output.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -50,6 +52,22 @@ inline CommandRun OccludeWithPrefix(const std::string& prefix, const std::string
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// `args` with every "{T}" replaced by `dir`.
+inline std::string WithFolder(std::string args, const std::filesystem::path& dir) {
+  for (std::size_t at; (at = args.find("{T}")) != std::string::npos;) {
+    args.replace(at, 3, dir.string());
+  }
+  return args;
+}
+
+/// A failed run's output is one line, "occlude: error: ...", holding `expected`.
+inline void ExpectOneErrorLine(const CommandRun& r, const std::string& expected) {
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("occlude: error: ", 0), 0u) << r.output;
 }
 
 inline bool EmptyOrMissing(const std::filesystem::path& dir) {

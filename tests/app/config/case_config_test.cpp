@@ -198,6 +198,20 @@ TEST_F(CaseConfigTest, SyntheticSource) {
   EXPECT_FALSE(c.lower.has_value());
 }
 
+TEST_F(CaseConfigTest, LandmarksFileIsRelativeToTheConfigAndMustExist) {
+  EXPECT_FALSE(Load(kFiles).landmarks_file.has_value());
+  std::ofstream(tmp_ / "meshes" / "landmarks.csv") << "jaw,tooth,type,x_mm,y_mm,z_mm\n";
+  const CaseConfig c = Load(kFiles + "[landmarks]\nfile = \"meshes/landmarks.csv\"\n");
+  ASSERT_TRUE(c.landmarks_file.has_value());
+  EXPECT_EQ(*c.landmarks_file, (tmp_.path() / "meshes" / "landmarks.csv").lexically_normal());
+  const std::string missing = ErrorOf(kFiles + "[landmarks]\nfile = \"nothere.csv\"\n");
+  EXPECT_NE(missing.find("landmarks.file"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("no such file"), std::string::npos) << missing;
+  const std::string misspelt = ErrorOf(kFiles + "[landmarks]\nfiles = \"x.csv\"\n");
+  EXPECT_NE(misspelt.find("landmarks.files"), std::string::npos) << misspelt;
+  EXPECT_NE(misspelt.find("file"), std::string::npos) << misspelt;
+}
+
 TEST(CaseConfigEditDistance, Levenshtein) {
   EXPECT_EQ(app::EditDistance("band", "band_mm"), 3u);
   EXPECT_EQ(app::EditDistance("kitten", "sitting"), 3u);

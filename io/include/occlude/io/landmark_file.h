@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -36,5 +37,9 @@ std::vector<Landmark> ReadLandmarkFile(const std::filesystem::path& file);
 
 /// The same on the file's text already in memory; `file` only names it in messages.
 std::vector<Landmark> ParseLandmarkFile(std::string_view text, const std::filesystem::path& file);
+
+/// The text of a landmark file holding `landmarks` in order: the header, then one row each,
+/// coordinates to 1e-6 mm. ParseLandmarkFile reads it back.
+std::string FormatLandmarkFile(const std::vector<Landmark>& landmarks);
 
 }  // namespace occlude::io

@@ -1,0 +1,69 @@
+// The arch analysis of a case (case_analysis.h): AnalyzeArch on each jaw, the given landmarks
+// applied per jaw, and ComputeRelationships at a pose.
+#include "session/case_analysis.h"
+
+#include <optional>
+
+#include "base/user_error.h"
+#include "occlude/io/landmark_file.h"
+
+namespace occlude::app {
+
+CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given) {
+  CaseAnalysis a;
+  a.lower_L = analysis::AnalyzeArch(*pair.lower_L, io::Jaw::kLower);
+  a.upper_U = analysis::AnalyzeArch(*pair.upper_U, io::Jaw::kUpper);
+  analysis::ApplyGivenLandmarks(given, &a.lower_L);
+  analysis::ApplyGivenLandmarks(given, &a.upper_U);
+  a.has_given_landmarks = !given.empty();
+  return a;
+}
+
+analysis::Relationships RelationshipsAt(const CaseAnalysis& a, const Eigen::Isometry3d& X_LU) {
+  // The lower arch frame is set whenever the arch curve was found (even when no tooth was).
+  std::optional<analysis::ArchFrame> lower_frame_L;
+  if (a.lower_L.ok() || !a.lower_L.arch_curve_J.empty()) lower_frame_L = a.lower_L.frame;
+  return analysis::ComputeRelationships(a.upper_U.Points(), a.lower_L.Points(), X_LU,
+                                        lower_frame_L);
+}
+
+std::vector<analysis::ArchLandmark> LandmarksInL(const CaseAnalysis& a,
+                                                 const Eigen::Isometry3d& X_LU) {
+  std::vector<analysis::ArchLandmark> out = a.lower_L.landmarks;
+  for (analysis::ArchLandmark l : a.upper_U.landmarks) {
+    l.landmark.p = X_LU * l.landmark.p;
+    out.push_back(l);
+  }
+  return out;
+}
+
+analysis::ArchFrame ViewFrame(const CaseAnalysis& a, const analysis::Relationships& r,
+                              const Eigen::Isometry3d& X_LU) {
+  if (!r.frame_source.empty()) return r.frame_L;
+  analysis::ArchFrame f;
+  if (a.upper_U.arch_curve_J.empty()) return f;
+  const analysis::ArchFrame& u = a.upper_U.frame;
+  f.origin_J = X_LU * u.origin_J;
+  f.lateral_J = X_LU.linear() * u.lateral_J;
+  f.anterior_J = X_LU.linear() * u.anterior_J;
+  f.occlusal_J = -(X_LU.linear() * u.occlusal_J);  // the upper's occlusal side faces down
+  return f;
+}
+
+std::vector<io::Landmark> GivenAtReference(const Eigen::Isometry3d& X_LU_ref,
+                                           std::vector<io::Landmark> given) {
+  for (io::Landmark& l : given) {
+    if (l.jaw == io::Jaw::kUpper) l.p = X_LU_ref * l.p;
+  }
+  return given;
+}
+
+std::vector<io::Landmark> ReadGivenLandmarks(const std::filesystem::path& file) {
+  try {
+    return io::ReadLandmarkFile(file);
+  } catch (const io::LandmarkFileError& e) {
+    throw UserError(e.what());
+  }
+}
+
+}  // namespace occlude::app
