@@ -305,10 +305,8 @@ std::string ReportHtml(const ReportInputs& in) {
        "frame.</p>\n"
     << PoseSection(in) << MetricsSection(in) << RelationshipsHtml(in.analysis->relationships)
     << in.search_html;
-  s << in.viewer_html
-    << "<h2>Contact maps and views</h2>
-       ";
-      for (const auto& p : in.pictures) {
+  s << in.viewer_html << "<h2>Contact maps and views</h2>\n";
+  for (const auto& p : in.pictures) {
     s << "<figure><img alt=\"" << Escape(p.title) << "\" src=\"data:image/png;base64,"
       << Base64(p.png) << "\"><figcaption class=\"note\">" << Escape(p.title) << " ("
       << Escape(p.file) << ")</figcaption></figure>\n";
