@@ -1,4 +1,4 @@
-// `occlude propose CASE.toml [--out DIR]`: the automated occlusion proposal
+// `occlude propose CASE.toml [--out DIR] [--global]`: the automated occlusion proposal
 // (report/proposal_report.h): searches from the config's start pose with the config's solver
 // and writes the K proposals and the full report of the best.
 #include <memory>
@@ -16,10 +16,13 @@ struct ProposeArgs {
   std::string config;
   std::string out;
   double memory_budget_mb = 0;
+  bool global = false;
 };
 
 void RunPropose(const ProposeArgs& args) {
-  ProposeAndReport(LoadCaseConfig(args.config), args.out, args.memory_budget_mb);
+  CaseConfig config = LoadCaseConfig(args.config);
+  if (args.global) config.solver.scope = "global";
+  ProposeAndReport(config, args.out, args.memory_budget_mb);
 }
 
 }  // namespace
@@ -31,6 +34,9 @@ void AddProposeCommand(CLI::App& app) {
   auto args = std::make_shared<ProposeArgs>();
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  cmd->add_flag("--global", args->global,
+                "Global scope (overrides solver.scope): no start pose, every intercuspation of "
+                "the two arches, ranked by [clinical]");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   cmd->callback([args] { RunPropose(*args); });
 }

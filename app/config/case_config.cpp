@@ -11,6 +11,7 @@
 
 #include "base/user_error.h"
 #include "config/case_config_toml_internal.h"
+#include "config/clinical_targets_internal.h"
 #include "occlude/io/synthetic_jaws.h"
 
 namespace occlude::app {
@@ -20,7 +21,7 @@ using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {
     "case",   "lower", "upper",  "synthetic", "accuracy", "contact", "solver",
-    "bounds", "start", "adjust", "output",    "report",   "limits"};
+    "bounds", "start", "adjust", "output",    "report",   "limits",  "clinical"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
                                              "ry_deg", "rz_deg", "locked"};
@@ -49,6 +50,7 @@ std::vector<std::string> AllDottedKeys() {
           "solver.threads",
           "solver.proposals",
           "solver.max_seconds",
+          "solver.scope",
           "solver.options",
           "bounds.tx_mm",
           "bounds.ty_mm",
@@ -67,7 +69,17 @@ std::vector<std::string> AllDottedKeys() {
           "report.map_max_mm",
           "report.map_penetration_from_mm",
           "report.image_width_px",
-          "limits.memory_budget_mb"};
+          "limits.memory_budget_mb",
+          "clinical.molar_class",
+          "clinical.molar_class_right",
+          "clinical.molar_class_left",
+          "clinical.canine_class",
+          "clinical.canine_class_right",
+          "clinical.canine_class_left",
+          "clinical.overjet_mm",
+          "clinical.overbite_mm",
+          "clinical.midline_max_mm",
+          "clinical.mode"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -168,7 +180,8 @@ void ReadContact(const Table& t, CaseConfig* c) {
 }
 
 void ReadSolver(const Table& t, CaseConfig* c) {
-  t.AllowOnly({"name", "starts", "seed", "threads", "proposals", "max_seconds", "options"});
+  t.AllowOnly(
+      {"name", "starts", "seed", "threads", "proposals", "max_seconds", "scope", "options"});
   SolverSettings& s = c->solver;
   if (auto v = t.String("name")) {
     if (v->empty()) t.Fail("name", "must name a solver (or \"auto\")");
@@ -182,6 +195,11 @@ void ReadSolver(const Table& t, CaseConfig* c) {
   if (auto v = t.Integer("proposals", 1, 1000)) s.proposals = static_cast<int>(*v);
   if (auto v = t.Number("max_seconds", 0, true, 1e6, false, "a positive number of seconds")) {
     s.max_seconds = *v;
+  }
+  if (auto v = t.String("scope")) {
+    if (*v != "local" && *v != "global")
+      t.Fail("scope", "'" + *v + "' is not a scope; use \"local\" or \"global\"");
+    s.scope = *v;
   }
   if (auto o = t.SubTable("options")) {
     for (auto&& [k, node] : o->raw()) {
@@ -299,6 +317,7 @@ void ReadAll(const Table& root, CaseConfig* c) {
     c->output_dir = t->Path("folder");
   }
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
+  if (auto t = root.SubTable("clinical")) c->clinical = ReadClinicalTable(*t);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
     c->memory_budget_mb =

@@ -18,7 +18,12 @@
 //               region_of_interest = true (model only what the search can reach)
 //   [contact]   band_mm = 0.1 in (0, 5]; max_penetration_mm = 0.05 in [0, 5]
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
-//               proposals = 3 (K); max_seconds = 60; [solver.options] free table
+//               proposals = 3 (K); max_seconds = 60; scope = "local" (from the start pose)
+//               or "global" (no start pose: every intercuspation of the two arches, ranked by
+//               [clinical]); [solver.options] free table
+//   [clinical]  molar_class, canine_class (or _right / _left) = "I" | "II" | "III";
+//               overjet_mm, overbite_mm = [min, max]; midline_max_mm; mode = "rank" |
+//               "constraint" (config/clinical_targets.h; the default ranking without it)
 //   [bounds]    tx_mm, ty_mm, tz_mm = [min, max]; rx_deg, ry_deg, rz_deg = [min, max]
 //               (about the start pose); locked = ["rz", ...] (never all six)
 //   [start]     translation_mm = [x, y, z]; rotation_deg = [x, y, z] (rotation vector about
@@ -46,6 +51,7 @@
 #include <variant>
 #include <vector>
 
+#include "config/clinical_targets.h"
 #include "config/resolution_choice.h"
 #include "occlude/io/mesh_io.h"
 #include "occlude/planner/pose.h"
@@ -83,6 +89,7 @@ struct SolverSettings {
   int threads = 0;                       ///< 0 = all cores
   int proposals = 3;                     ///< K poses `propose` keeps
   double max_seconds = 60;               ///< wall-clock budget of a search
+  std::string scope = "local";           ///< "local" (from the start pose) or "global"
   std::map<std::string, Value> options;  ///< [solver.options], passed to the solver as is
 };
 
@@ -122,6 +129,7 @@ struct CaseConfig {
   double max_penetration_mm = 0.05;
 
   SolverSettings solver;
+  ClinicalTargets clinical;  ///< [clinical], or the default ranking
   std::array<DofRange, kNumDofs> bounds{{{-3, 3}, {-3, 3}, {-3, 3}, {-5, 5}, {-5, 5}, {-5, 5}}};
   std::array<bool, kNumDofs> locked{};
 
