@@ -32,6 +32,9 @@ struct ValidateArgs {
   double max_penetration_mm = 0.05;
   std::string out;
   bool global = false;
+  double scan_step_mm = planner::GlobalScanSettings{}.sagittal_step_mm;
+  std::vector<int> basins = {planner::GlobalScanSettings{}.max_basins,
+                             planner::GlobalScanSettings{}.max_refined};
   bool solver_given = false;  // --solver on the command line
 };
 
@@ -40,6 +43,11 @@ struct ValidateArgs {
 void RunGlobalValidateCommand(const ValidateArgs& args, ValidateOptions options,
                               const JawPair& jaws, const std::string& machine) {
   if (!args.solver_given) options.solvers = {planner::PlanRequest{}.solver};
+  if (args.basins.size() != 2)
+    throw UserError("--basins: give two counts, scanned,refined (e.g. 12,6)");
+  options.global_scan.sagittal_step_mm = args.scan_step_mm;
+  options.global_scan.max_basins = args.basins[0];
+  options.global_scan.max_refined = args.basins[1];
   std::cerr << "validate --global: case " << jaws.name << ", " << options.solvers.size()
             << " solver(s) x " << GlobalStartKinds().size() << " start kinds x " << options.starts
             << " starts; " << machine << "\n";
@@ -118,6 +126,14 @@ void AddValidateCommand(CLI::App& app) {
                                     "Use the generated jaw pair with this many triangles per jaw");
   case_opt->excludes(synth_opt);
   synth_opt->excludes(case_opt);
+  cmd->add_option("--scan-step", args->scan_step_mm, "With --global: the scan's sagittal step, mm")
+      ->capture_default_str()
+      ->check(MmBetween(0.1, false, 15.0, "a step in mm between 0.1 and 15"));
+  cmd->add_option("--basins", args->basins,
+                  "With --global: scan basins through the coarse stage, and of those refined")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   auto* solver_opt =
       cmd->add_option("--solver", args->solvers,
                       "Solvers (comma separated): ceres, coarse-to-fine, nlopt-local, nlopt-global")

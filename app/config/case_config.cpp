@@ -52,6 +52,7 @@ std::vector<std::string> AllDottedKeys() {
           "solver.max_seconds",
           "solver.scope",
           "solver.options",
+          "solver.global",
           "bounds.tx_mm",
           "bounds.ty_mm",
           "bounds.tz_mm",
@@ -179,9 +180,18 @@ void ReadContact(const Table& t, CaseConfig* c) {
   }
 }
 
+// [solver.global]: the global search's scan.
+void ReadSolverGlobal(const Table& g, SolverSettings* s) {
+  g.AllowOnly({"sagittal_step_mm", "max_basins", "max_refined"});
+  s->global_sagittal_step_mm =
+      g.Number("sagittal_step_mm", 0, true, 15, false, "a step in mm in (0, 15]");
+  if (auto v = g.Integer("max_basins", 1, 1000)) s->global_max_basins = static_cast<int>(*v);
+  if (auto v = g.Integer("max_refined", 1, 1000)) s->global_max_refined = static_cast<int>(*v);
+}
+
 void ReadSolver(const Table& t, CaseConfig* c) {
-  t.AllowOnly(
-      {"name", "starts", "seed", "threads", "proposals", "max_seconds", "scope", "options"});
+  t.AllowOnly({"name", "starts", "seed", "threads", "proposals", "max_seconds", "scope", "options",
+               "global"});
   SolverSettings& s = c->solver;
   if (auto v = t.String("name")) {
     if (v->empty()) t.Fail("name", "must name a solver (or \"auto\")");
@@ -201,6 +211,7 @@ void ReadSolver(const Table& t, CaseConfig* c) {
       t.Fail("scope", "'" + *v + "' is not a scope; use \"local\" or \"global\"");
     s.scope = *v;
   }
+  if (auto g = t.SubTable("global")) ReadSolverGlobal(*g, &s);
   if (auto o = t.SubTable("options")) {
     for (auto&& [k, node] : o->raw()) {
       const std::string key(k.str());

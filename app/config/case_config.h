@@ -20,7 +20,8 @@
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
 //               proposals = 3 (K); max_seconds = 60; scope = "local" (from the start pose)
 //               or "global" (no start pose: every intercuspation of the two arches, ranked by
-//               [clinical]); [solver.options] free table
+//               [clinical]); [solver.options] free table; [solver.global] sagittal_step_mm = 1,
+//               max_basins = 12, max_refined = 6 (the global search's scan)
 //   [clinical]  molar_class, canine_class (or _right / _left) = "I" | "II" | "III";
 //               overjet_mm, overbite_mm = [min, max]; midline_max_mm; mode = "rank" |
 //               "constraint" (config/clinical_targets.h; the default ranking without it)
@@ -84,12 +85,16 @@ struct DofRange {
 struct SolverSettings {
   using Value = std::variant<bool, std::int64_t, double, std::string>;
   std::string name = "auto";
-  int starts = 16;                       ///< random starts
-  std::uint64_t seed = 1;                ///< random seed of the starts
-  int threads = 0;                       ///< 0 = all cores
-  int proposals = 3;                     ///< K poses `propose` keeps
-  double max_seconds = 60;               ///< wall-clock budget of a search
-  std::string scope = "local";           ///< "local" (from the start pose) or "global"
+  int starts = 16;              ///< random starts
+  std::uint64_t seed = 1;       ///< random seed of the starts
+  int threads = 0;              ///< 0 = all cores
+  int proposals = 3;            ///< K poses `propose` keeps
+  double max_seconds = 60;      ///< wall-clock budget of a search
+  std::string scope = "local";  ///< "local" (from the start pose) or "global"
+  /// [solver.global]: the global search's scan (planner::GlobalScanSettings; unset = its
+  /// defaults): sagittal_step_mm, max_basins, max_refined.
+  std::optional<double> global_sagittal_step_mm;
+  std::optional<int> global_max_basins, global_max_refined;
   std::map<std::string, Value> options;  ///< [solver.options], passed to the solver as is
 };
 

@@ -36,6 +36,10 @@ planner::GlobalRequest GlobalRequestFromConfig(const CaseConfig& config,
   g.lower_L = JawArchOf(analysis.lower_L, config.file.string());
   g.upper_U = JawArchOf(analysis.upper_U, config.file.string());
   g.local = local;
+  const SolverSettings& solver = config.solver;
+  if (solver.global_sagittal_step_mm) g.scan.sagittal_step_mm = *solver.global_sagittal_step_mm;
+  if (solver.global_max_basins) g.scan.max_basins = *solver.global_max_basins;
+  if (solver.global_max_refined) g.scan.max_refined = *solver.global_max_refined;
   g.ranking.judge = ClinicalJudge(config.clinical, analysis);
   try {
     planner::ValidateGlobalRequest(g);

@@ -110,6 +110,7 @@ GlobalValidateRun RunGlobalJob(const GlobalJob& job, const GlobalSetup& s) {
   planner::GlobalRequest g;
   g.lower_L = s.lower_L;
   g.upper_U = Moved(s.upper_U, X_start);
+  g.scan = o.global_scan;
   g.local = BaseRequest(o);
   g.local.solver = job.solver;
   g.local.max_proposals = kGlobalProposals;

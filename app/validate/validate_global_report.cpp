@@ -58,6 +58,8 @@ std::string GlobalValidateSummaryText(const GlobalValidateResult& result,
   s << " mm" << (options.exact_last ? " + exact" : "") << "; " << options.starts
     << " starts per kind, seed " << options.seed << "; success within " << options.success_mm
     << " mm and " << options.success_deg << " deg\n";
+  s << "arch analysis and the reference's oracles in " << Fixed(result.build_seconds, 1)
+    << " s (wall)\n";
   s << "seat of the reference (the local search from it): "
     << Fixed(result.seat_from_reference.translation_mm, 3) << " mm / "
     << Fixed(result.seat_from_reference.rotation_deg, 2) << " deg from the reference, contact "
