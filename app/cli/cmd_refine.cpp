@@ -23,6 +23,7 @@
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "config/pose_file.h"
+#include "report/global_proposal_report.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
@@ -88,9 +89,13 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
   SearchSummary summary{"refine", base_source + " + [adjust]", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};
   ReportAnalysis analysis = AnalyzePose(session, after.X_LU);
+  // [clinical] kept: which targets the refined pose meets.
+  const TargetsReport targets = config.clinical.from_config
+                                    ? ReportTargets(config, AnalyzeCase(session.jaws()), after.X_LU)
+                                    : TargetsReport{};
   const ReportFiles files =
       MakeReportFiles(session, analysis, "`occlude refine` from " + base_source,
-                      SearchJson(summary, false), SearchHtml(summary));
+                      SearchJson(summary, false), targets.html + SearchHtml(summary));
   const json refine = {
       {"base", {{"source", base_source}, {"X_LU", json::parse(MatrixJson(base.matrix()))}}},
       {"adjust",
@@ -124,9 +129,9 @@ void RefineOnce(CaseSession& session, const Eigen::Isometry3d& base, const std::
             << after.evaluation.max_penetration_mm << " mm (constrained "
             << after.evaluation.constrained_penetration_mm << ", limit "
             << config.max_penetration_mm << ")\n"
-            << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
-            << NowSeconds() - start << " s wall, " << ThreadCpuSeconds() - cpu_start
-            << " s CPU of this thread)\n"
+            << targets.text << "  report in " << (out / "report.html").string() << " ("
+            << std::setprecision(2) << NowSeconds() - start << " s wall, "
+            << ThreadCpuSeconds() - cpu_start << " s CPU of this thread)\n"
             << std::flush;
 }
 

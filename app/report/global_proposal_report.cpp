@@ -196,6 +196,24 @@ void PrintSeats(const CaseConfig& config, const planner::GlobalResult& result,
 
 }  // namespace
 
+TargetsReport ReportTargets(const CaseConfig& config, const CaseAnalysis& analysis,
+                            const Eigen::Isometry3d& X_LU) {
+  TargetsReport r;
+  const analysis::Relationships rel = RelationshipsAt(analysis, X_LU);
+  r.text = "  clinical targets (" + std::string(ToString(config.clinical.mode)) +
+           "): " + RelationshipsLine(rel) + "\n";
+  r.html = "<h2>Clinical targets</h2>\n<p class=\"note\">" + HtmlEscape(RelationshipsLine(rel)) +
+           "</p>\n<table><tr><th>target</th><th>wanted</th><th>measured</th><th>met</th></tr>\n";
+  for (const TargetCheck& c : CheckTargets(config.clinical, rel)) {
+    const std::string met = !c.has_value ? "not measured" : c.met ? "met" : "missed";
+    r.text += "    " + c.key + " " + c.wanted + ": " + met + " (" + c.measured + ")\n";
+    r.html += "<tr><td>" + c.key + "</td><td>" + HtmlEscape(c.wanted) + "</td><td>" +
+              HtmlEscape(c.measured) + "</td><td>" + met + "</td></tr>\n";
+  }
+  r.html += "</table>\n";
+  return r;
+}
+
 Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std::string& out_option,
                                          double memory_budget_mb) {
   const double start = NowSeconds();

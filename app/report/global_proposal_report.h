@@ -14,8 +14,18 @@
 #include <string>
 
 #include "config/case_config.h"
+#include "session/case_analysis.h"
 
 namespace occlude::app {
+
+/// The [clinical] targets of `config` at X_LU (U in L), for `refine`: `text` one line per
+/// target for the console ("  molar_class_right I: met (I (+0.2 mm))"), `html` a section of
+/// report.html.
+struct TargetsReport {
+  std::string text, html;
+};
+TargetsReport ReportTargets(const CaseConfig& config, const CaseAnalysis& analysis,
+                            const Eigen::Isometry3d& X_LU);
 
 /// As ProposeAndReport (proposal_report.h) in global scope; returns the best pose X_LU.
 /// Throws UserError naming the config for a jaw without teeth, arches that cannot face each
