@@ -56,10 +56,12 @@ void RunGlobalValidateCommand(const ValidateArgs& args, ValidateOptions options,
   const std::string summary = GlobalValidateSummaryText(result, options, machine);
   const auto charts =
       GlobalValidateCharts(result, options, jaws.name + " | " + machine + " | one core per run");
-  WriteFileAtomic(out / "validate.csv", GlobalValidateCsv(result));
-  WriteFileAtomic(out / "validate-summary.csv", GlobalValidateSummaryCsv(result));
-  WriteFileAtomic(out / "validate-summary.txt", summary);
-  for (const auto& [file, png] : charts) WriteFileAtomic(out / file, png);
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"validate.csv", GlobalValidateCsv(result)},
+      {"validate-summary.csv", GlobalValidateSummaryCsv(result)},
+      {"validate-summary.txt", summary}};
+  files.insert(files.end(), charts.begin(), charts.end());
+  for (const auto& [file, bytes] : files) WriteFileAtomic(out / file, bytes);
   std::cout << summary;
   std::cerr << "validate: wrote " << (out / "validate.csv").string()
             << ", the summaries and stability.png\n";
