@@ -214,28 +214,12 @@ TargetsReport ReportTargets(const CaseConfig& config, const CaseAnalysis& analys
   return r;
 }
 
-Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std::string& out_option,
-                                         double memory_budget_mb) {
-  const double start = NowSeconds();
-  CaseConfig config = config_in;
-  config.region_of_interest = false;  // the global search reaches anywhere
-  const planner::SolverKind solver =
-      PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero())
-          .solver;  // settings first
-  const std::filesystem::path out = PrepareCaseOutput(config, out_option);
-  CaseSession session(config, memory_budget_mb);
-  StepClock clock;
-  clock.Start("analysed the arches");
-  const CaseAnalysis analysis = AnalyzeCase(session.jaws());
-  clock.Finish();
-  planner::GlobalResult result = RunGlobalSearch(config, session, analysis);
-  PrintSeats(config, result, analysis);
-  if (result.proposals.empty()) {
-    throw UserError(config.file.string() + ": clinical: no seat of the " +
-                    std::to_string(result.excluded.size()) +
-                    " found meets the targets (mode = \"constraint\"); relax them or give mode "
-                    "= \"rank\"");
-  }
+namespace {
+
+// The report of #1, proposals.json and the pose files of every proposal, written into `out`.
+void WriteGlobalOutputs(CaseSession& session, const CaseConfig& config,
+                        const CaseAnalysis& analysis, const planner::GlobalResult& result,
+                        planner::SolverKind solver, const std::filesystem::path& out) {
   planner::PlanResult plan;
   plan.solver = solver;
   for (const planner::GlobalProposal& g : result.proposals) plan.proposals.push_back(g.proposal);
@@ -244,9 +228,9 @@ Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std:
   plan.wall_seconds = result.wall_seconds;
   SearchSummary summary{"propose", "no start pose (global search)", &plan, session.pivot_L(),
                         session.jaws().upper_U.get()};
-  const Eigen::Isometry3d best = plan.proposals.front().X_LU;
-  ReportAnalysis report = AnalyzePose(session, best);
+  ReportAnalysis report = AnalyzePose(session, plan.proposals.front().X_LU);
   report.timings_s.emplace_back("global search (wall)", result.wall_seconds);
+  StepClock clock;
   clock.Start("rendered the maps and views");
   const std::string html = GlobalHtml(result, config, analysis) + SearchHtml(summary);
   const ReportFiles files =
@@ -261,10 +245,37 @@ Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std:
                        ProposalPoseJson(plan.proposals[k].X_LU, static_cast<int>(k + 1)));
   }
   WriteReportFiles(out, files, extra);
+}
+
+}  // namespace
+
+Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std::string& out_option,
+                                         double memory_budget_mb) {
+  const double start = NowSeconds();
+  CaseConfig config = config_in;
+  config.region_of_interest = false;  // the global search reaches anywhere
+  const planner::SolverKind solver =
+      PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero())
+          .solver;  // settings first
+  const std::filesystem::path out = PrepareCaseOutput(config, out_option);
+  CaseSession session(config, memory_budget_mb);
+  StepClock clock;
+  clock.Start("analysed the arches");
+  const CaseAnalysis analysis = AnalyzeCase(session.jaws());
+  clock.Finish();
+  const planner::GlobalResult result = RunGlobalSearch(config, session, analysis);
+  PrintSeats(config, result, analysis);
+  if (result.proposals.empty()) {
+    throw UserError(config.file.string() + ": clinical: no seat of the " +
+                    std::to_string(result.excluded.size()) +
+                    " found meets the targets (mode = \"constraint\"); relax them or give mode "
+                    "= \"rank\"");
+  }
+  WriteGlobalOutputs(session, config, analysis, result, solver, out);
   std::cout << "report of #1 in " << (out / "report.html").string() << "; all proposals in "
             << (out / "proposals.json").string() << " (" << std::setprecision(1)
             << NowSeconds() - start << " s)\n";
-  return best;
+  return result.proposals.front().proposal.X_LU;
 }
 
 }  // namespace occlude::app
