@@ -36,6 +36,7 @@
 #include "occlude/io/mesh_io.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "occlude/planner/global_search.h"
+#include "occlude/planner/global_starts.h"
 #include "session/jaw_pair.h"
 
 using namespace occlude;
@@ -125,18 +126,6 @@ Case LoadCase(const std::string& which) {
   return c;
 }
 
-Eigen::Vector3d RandomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  return Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
-}
-
-// A rotation drawn uniformly from SO(3) (a normalized Gaussian quaternion).
-Eigen::Matrix3d UniformRotation(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-  return q.normalized().toRotationMatrix();
-}
-
 // What the measurement knows of the reference.
 struct Reference {
   const Case* c = nullptr;
@@ -159,18 +148,9 @@ struct Outcome {
 // X_LU_file: the pose of U in the file frame of the upper as given (the frame the upper mesh,
 // its arch and its oracles are in; the given pose of that frame in L is the identity).
 Eigen::Isometry3d StartFrame(const Reference& ref, const std::string& kind, std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  if (kind == "apart" || kind == "reframe") {
-    const Eigen::Isometry3d turn = Eigen::Translation3d(ref.pivot_L) *
-                                   Eigen::Isometry3d(UniformRotation(rng)) *
-                                   Eigen::Translation3d(-ref.pivot_L);
-    return Eigen::Translation3d((20.0 + 40.0 * unit(rng)) * RandomUnit(rng)) * turn * ref.c->X_true;
-  }
-  const double shift = (3.0 + 9.0 * unit(rng)) * (unit(rng) < 0.5 ? -1.0 : 1.0);
-  planner::PoseParameters p;
-  p.translation_mm = shift * ref.lower_arch.anterior_J;
-  p.rotation_deg = 10.0 * unit(rng) * RandomUnit(rng);
-  return planner::ComposePose(p, ref.pivot_L, ref.c->X_true);
+  if (kind == "apart" || kind == "reframe")
+    return planner::ApartStart(ref.c->X_true, ref.pivot_L, rng);
+  return planner::SagittalStart(ref.c->X_true, ref.pivot_L, ref.lower_arch.anterior_J, rng);
 }
 
 // The arch an analysis may find: the incisal point moved up to 2 mm in the occlusal plane,
@@ -180,7 +160,8 @@ planner::JawArch Noisy(planner::JawArch a, std::mt19937& rng) {
   const double angle = 2.0 * M_PI * unit(rng), r = 2.0 * unit(rng);
   a.origin_J += r * (std::cos(angle) * a.lateral_J + std::sin(angle) * a.anterior_J);
   const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(3.0 * unit(rng) * M_PI / 180.0, RandomUnit(rng)).toRotationMatrix();
+      Eigen::AngleAxisd(3.0 * unit(rng) * M_PI / 180.0, planner::RandomUnitVector(rng))
+          .toRotationMatrix();
   a.occlusal_J = R * a.occlusal_J;
   a.anterior_J = R * a.anterior_J;
   a.lateral_J = R * a.lateral_J;

@@ -1,4 +1,5 @@
-// `occlude propose CASE.toml [--out DIR] [--landmarks FILE]`: the automated occlusion proposal
+// `occlude propose CASE.toml [--out DIR] [--landmarks FILE] [--global]`: the automated occlusion
+// proposal
 // (report/proposal_report.h): searches from the config's start pose with the config's solver
 // and writes the K proposals and the full report of the best.
 #include <memory>
@@ -17,11 +18,13 @@ struct ProposeArgs {
   std::string out;
   std::string landmarks;
   double memory_budget_mb = 0;
+  bool global = false;
 };
 
 void RunPropose(const ProposeArgs& args) {
-  ProposeAndReport(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.out,
-                   args.memory_budget_mb);
+  CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
+  if (args.global) config.solver.scope = "global";
+  ProposeAndReport(config, args.out, args.memory_budget_mb);
 }
 
 }  // namespace
@@ -33,6 +36,9 @@ void AddProposeCommand(CLI::App& app) {
   auto args = std::make_shared<ProposeArgs>();
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
+  cmd->add_flag("--global", args->global,
+                "Global scope (overrides solver.scope): no start pose, every intercuspation of "
+                "the two arches, ranked by [clinical]");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   AddLandmarksOption(cmd, &args->landmarks);
   cmd->callback([args] { RunPropose(*args); });

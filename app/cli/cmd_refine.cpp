@@ -35,6 +35,7 @@
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "config/pose_file.h"
+#include "report/global_proposal_report.h"
 #include "report/relationships_table.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
@@ -195,9 +196,13 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
   SearchSummary summary{"refine", base_source + " + [adjust]", &r.result, session.pivot_L(),
                         session.jaws().upper_U.get()};
   summary.analysis = &session.Analysis();
-  const ReportFiles files =
-      MakeReportFiles(session, r.analysis, "`occlude refine` from " + base_source,
-                      SearchJson(summary, false), SearchHtml(summary), ReportView{display, {}});
+  // [clinical] kept: which targets the refined pose meets.
+  const TargetsReport targets = config.clinical.from_config
+                                    ? ReportTargets(config, session.Analysis(), r.after().X_LU)
+                                    : TargetsReport{};
+  const ReportFiles files = MakeReportFiles(
+      session, r.analysis, "`occlude refine` from " + base_source, SearchJson(summary, false),
+      targets.html + SearchHtml(summary), ReportView{display, {}});
   const json refine = {
       {"base", {{"source", base_source}, {"X_LU", json::parse(MatrixJson(base.matrix()))}}},
       {"adjust",
@@ -241,9 +246,9 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
             << config.max_penetration_mm << ")\n"
             << RelationshipLines(RelationshipsAt(session.Analysis(), base),
                                  r.analysis.relationships)
-            << "  report in " << (out / "report.html").string() << " (" << std::setprecision(2)
-            << NowSeconds() - r.start_s << " s wall, " << ThreadCpuSeconds() - r.cpu_start_s
-            << " s CPU of this thread)\n"
+            << targets.text << "  report in " << (out / "report.html").string() << " ("
+            << std::setprecision(2) << NowSeconds() - r.start_s << " s wall, "
+            << ThreadCpuSeconds() - r.cpu_start_s << " s CPU of this thread)\n"
             << std::flush;
 }
 

@@ -11,6 +11,7 @@
 #include "cli/options.h"
 #include "session/jaw_pair.h"
 #include "validate/validate.h"
+#include "validate/validate_global.h"
 
 namespace occlude::app {
 namespace {
@@ -30,7 +31,41 @@ struct ValidateArgs {
   double band_mm = 0.1;
   double max_penetration_mm = 0.05;
   std::string out;
+  bool global = false;
+  double scan_step_mm = planner::GlobalScanSettings{}.sagittal_step_mm;
+  std::vector<int> basins = {planner::GlobalScanSettings{}.max_basins,
+                             planner::GlobalScanSettings{}.max_refined};
+  bool solver_given = false;  // --solver on the command line
 };
+
+// `--global`: the solvers in global scope from near, sagittal and apart starts
+// (validate/validate_global.h); the default solver unless --solver names others.
+void RunGlobalValidateCommand(const ValidateArgs& args, ValidateOptions options,
+                              const JawPair& jaws, const std::string& machine) {
+  if (!args.solver_given) options.solvers = {planner::PlanRequest{}.solver};
+  if (args.basins.size() != 2)
+    throw UserError("--basins: give two counts, scanned,refined (e.g. 12,6)");
+  options.global_scan.sagittal_step_mm = args.scan_step_mm;
+  options.global_scan.max_basins = args.basins[0];
+  options.global_scan.max_refined = args.basins[1];
+  std::cerr << "validate --global: case " << jaws.name << ", " << options.solvers.size()
+            << " solver(s) x " << GlobalStartKinds().size() << " start kinds x " << options.starts
+            << " starts; " << machine << "\n";
+  const GlobalValidateResult result = RunGlobalValidation(jaws, options);
+  const std::filesystem::path out(args.out);
+  const std::string summary = GlobalValidateSummaryText(result, options, machine);
+  const auto charts =
+      GlobalValidateCharts(result, options, jaws.name + " | " + machine + " | one core per run");
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"validate.csv", GlobalValidateCsv(result)},
+      {"validate-summary.csv", GlobalValidateSummaryCsv(result)},
+      {"validate-summary.txt", summary}};
+  files.insert(files.end(), charts.begin(), charts.end());
+  for (const auto& [file, bytes] : files) WriteFileAtomic(out / file, bytes);
+  std::cout << summary;
+  std::cerr << "validate: wrote " << (out / "validate.csv").string()
+            << ", the summaries and stability.png\n";
+}
 
 void RunValidateCommand(const ValidateArgs& args) {
   ValidateOptions options;
@@ -61,6 +96,7 @@ void RunValidateCommand(const ValidateArgs& args) {
   const JawPair jaws = args.case_dir.empty() ? SyntheticJawPair(args.synthetic, args.seed)
                                              : LoadCaseFolder(args.case_dir);
   const std::string machine = MachineLine();
+  if (args.global) return RunGlobalValidateCommand(args, options, jaws, machine);
   std::cerr << "validate: case " << jaws.name << ", " << options.solvers.size() << " solvers x "
             << options.magnitudes.size() << " magnitudes x " << options.starts << " starts; "
             << machine << "\n";
@@ -92,11 +128,21 @@ void AddValidateCommand(CLI::App& app) {
                                     "Use the generated jaw pair with this many triangles per jaw");
   case_opt->excludes(synth_opt);
   synth_opt->excludes(case_opt);
-  cmd->add_option("--solver", args->solvers,
-                  "Solvers (comma separated): ceres, coarse-to-fine, nlopt-local, nlopt-global")
+  cmd->add_option("--scan-step", args->scan_step_mm, "With --global: the scan's sagittal step, mm")
+      ->capture_default_str()
+      ->check(MmBetween(0.1, false, 15.0, "a step in mm between 0.1 and 15"));
+  cmd->add_option("--basins", args->basins,
+                  "With --global: scan basins through the coarse stage, and of those refined")
       ->delimiter(',')
-      ->capture_default_str();
-  cmd->add_option("--starts", args->starts, "Perturbed starts per magnitude")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  auto* solver_opt =
+      cmd->add_option("--solver", args->solvers,
+                      "Solvers (comma separated): ceres, coarse-to-fine, nlopt-local, nlopt-global")
+          ->delimiter(',')
+          ->capture_default_str();
+  cmd->add_option("--starts", args->starts,
+                  "Perturbed starts per magnitude (with --global: per start kind)")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--magnitudes", args->magnitudes,
@@ -126,7 +172,11 @@ void AddValidateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(MmBetween(0.0, true, 5.0, "a depth in mm between 0 and 5"));
   cmd->add_option("--out", args->out, "Output folder")->required();
-  cmd->callback([args] {
+  cmd->add_flag("--global", args->global,
+                "Global scope: the solvers from near, sagittal and apart starts (--starts per "
+                "kind), scored against the seat of the reference too");
+  cmd->callback([args, solver_opt] {
+    args->solver_given = solver_opt->count() > 0;
     if (args->case_dir.empty() && args->synthetic == 0) {
       throw UserError(
           "validate: give --case DIR (with upper.stl and lower.stl at the bite) or --synthetic N");

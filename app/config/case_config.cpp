@@ -11,6 +11,7 @@
 
 #include "base/user_error.h"
 #include "config/case_config_toml_internal.h"
+#include "config/clinical_targets_internal.h"
 #include "occlude/io/synthetic_jaws.h"
 
 namespace occlude::app {
@@ -19,8 +20,8 @@ namespace {
 using toml_config::Table;
 
 const std::vector<std::string> kRootTables = {
-    "case",  "lower",  "upper",  "synthetic", "accuracy", "contact", "solver",   "bounds",
-    "start", "adjust", "output", "report",    "limits",   "refine",  "landmarks"};
+    "case",  "lower",  "upper",  "synthetic", "accuracy", "contact", "solver",    "bounds",
+    "start", "adjust", "output", "report",    "limits",   "refine",  "landmarks", "clinical"};
 const std::vector<std::string> kDofNames = {"tx", "ty", "tz", "rx", "ry", "rz"};
 const std::vector<std::string> kBoundKeys = {"tx_mm",  "ty_mm",  "tz_mm", "rx_deg",
                                              "ry_deg", "rz_deg", "locked"};
@@ -49,7 +50,9 @@ std::vector<std::string> AllDottedKeys() {
           "solver.threads",
           "solver.proposals",
           "solver.max_seconds",
+          "solver.scope",
           "solver.options",
+          "solver.global",
           "bounds.tx_mm",
           "bounds.ty_mm",
           "bounds.tz_mm",
@@ -69,7 +72,17 @@ std::vector<std::string> AllDottedKeys() {
           "report.image_width_px",
           "limits.memory_budget_mb",
           "refine.hold",
-          "landmarks.file"};
+          "landmarks.file",
+          "clinical.molar_class",
+          "clinical.molar_class_right",
+          "clinical.molar_class_left",
+          "clinical.canine_class",
+          "clinical.canine_class_right",
+          "clinical.canine_class_left",
+          "clinical.overjet_mm",
+          "clinical.overbite_mm",
+          "clinical.midline_max_mm",
+          "clinical.mode"};
 }
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
@@ -169,8 +182,18 @@ void ReadContact(const Table& t, CaseConfig* c) {
   }
 }
 
+// [solver.global]: the global search's scan.
+void ReadSolverGlobal(const Table& g, SolverSettings* s) {
+  g.AllowOnly({"sagittal_step_mm", "max_basins", "max_refined"});
+  s->global_sagittal_step_mm =
+      g.Number("sagittal_step_mm", 0, true, 15, false, "a step in mm in (0, 15]");
+  if (auto v = g.Integer("max_basins", 1, 1000)) s->global_max_basins = static_cast<int>(*v);
+  if (auto v = g.Integer("max_refined", 1, 1000)) s->global_max_refined = static_cast<int>(*v);
+}
+
 void ReadSolver(const Table& t, CaseConfig* c) {
-  t.AllowOnly({"name", "starts", "seed", "threads", "proposals", "max_seconds", "options"});
+  t.AllowOnly({"name", "starts", "seed", "threads", "proposals", "max_seconds", "scope", "options",
+               "global"});
   SolverSettings& s = c->solver;
   if (auto v = t.String("name")) {
     if (v->empty()) t.Fail("name", "must name a solver (or \"auto\")");
@@ -185,6 +208,12 @@ void ReadSolver(const Table& t, CaseConfig* c) {
   if (auto v = t.Number("max_seconds", 0, true, 1e6, false, "a positive number of seconds")) {
     s.max_seconds = *v;
   }
+  if (auto v = t.String("scope")) {
+    if (*v != "local" && *v != "global")
+      t.Fail("scope", "'" + *v + "' is not a scope; use \"local\" or \"global\"");
+    s.scope = *v;
+  }
+  if (auto g = t.SubTable("global")) ReadSolverGlobal(*g, &s);
   if (auto o = t.SubTable("options")) {
     for (auto&& [k, node] : o->raw()) {
       const std::string key(k.str());
@@ -336,6 +365,7 @@ void ReadAll(const Table& root, CaseConfig* c) {
   if (auto t = root.SubTable("report")) ReadReport(*t, c);
   if (auto t = root.SubTable("refine")) ReadRefine(*t, c);
   if (auto t = root.SubTable("landmarks")) ReadLandmarks(*t, c);
+  if (auto t = root.SubTable("clinical")) c->clinical = ReadClinicalTable(*t);
   if (auto t = root.SubTable("limits")) {
     t->AllowOnly({"memory_budget_mb"});
     c->memory_budget_mb =

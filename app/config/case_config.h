@@ -18,7 +18,13 @@
 //               region_of_interest = true (model only what the search can reach)
 //   [contact]   band_mm = 0.1 in (0, 5]; max_penetration_mm = 0.05 in [0, 5]
 //   [solver]    name = "auto"; starts = 16; seed = 1; threads = 0 (all cores);
-//               proposals = 3 (K); max_seconds = 60; [solver.options] free table
+//               proposals = 3 (K); max_seconds = 60; scope = "local" (from the start pose)
+//               or "global" (no start pose: every intercuspation of the two arches, ranked by
+//               [clinical]); [solver.options] free table; [solver.global] sagittal_step_mm = 1,
+//               max_basins = 12, max_refined = 6 (the global search's scan)
+//   [clinical]  molar_class, canine_class (or _right / _left) = "I" | "II" | "III";
+//               overjet_mm, overbite_mm = [min, max]; midline_max_mm; mode = "rank" |
+//               "constraint" (config/clinical_targets.h; the default ranking without it)
 //   [bounds]    tx_mm, ty_mm, tz_mm = [min, max]; rx_deg, ry_deg, rz_deg = [min, max]
 //               (about the start pose); locked = ["rz", ...] (never all six)
 //   [start]     translation_mm = [x, y, z]; rotation_deg = [x, y, z] (rotation vector about
@@ -50,6 +56,7 @@
 #include <variant>
 #include <vector>
 
+#include "config/clinical_targets.h"
 #include "config/resolution_choice.h"
 #include "occlude/io/mesh_io.h"
 #include "occlude/planner/pose.h"
@@ -82,11 +89,16 @@ struct DofRange {
 struct SolverSettings {
   using Value = std::variant<bool, std::int64_t, double, std::string>;
   std::string name = "auto";
-  int starts = 16;                       ///< random starts
-  std::uint64_t seed = 1;                ///< random seed of the starts
-  int threads = 0;                       ///< 0 = all cores
-  int proposals = 3;                     ///< K poses `propose` keeps
-  double max_seconds = 60;               ///< wall-clock budget of a search
+  int starts = 16;              ///< random starts
+  std::uint64_t seed = 1;       ///< random seed of the starts
+  int threads = 0;              ///< 0 = all cores
+  int proposals = 3;            ///< K poses `propose` keeps
+  double max_seconds = 60;      ///< wall-clock budget of a search
+  std::string scope = "local";  ///< "local" (from the start pose) or "global"
+  /// [solver.global]: the global search's scan (planner::GlobalScanSettings; unset = its
+  /// defaults): sagittal_step_mm, max_basins, max_refined.
+  std::optional<double> global_sagittal_step_mm;
+  std::optional<int> global_max_basins, global_max_refined;
   std::map<std::string, Value> options;  ///< [solver.options], passed to the solver as is
 };
 
@@ -133,6 +145,7 @@ struct CaseConfig {
   double max_penetration_mm = 0.05;
 
   SolverSettings solver;
+  ClinicalTargets clinical;  ///< [clinical], or the default ranking
   std::array<DofRange, kNumDofs> bounds{{{-3, 3}, {-3, 3}, {-3, 3}, {-5, 5}, {-5, 5}, {-5, 5}}};
   std::array<bool, kNumDofs> locked{};
 

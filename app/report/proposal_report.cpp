@@ -10,23 +10,23 @@
 #include "base/user_error.h"
 #include "config/case_output.h"
 #include "config/plan_config.h"
+#include "report/global_proposal_report.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
 #include "session/case_session.h"
 
 namespace occlude::app {
-namespace {
 
-std::string PoseFileJson(const Eigen::Isometry3d& X_LU, int rank) {
+std::string ProposalPoseJson(const Eigen::Isometry3d& X_LU, int rank) {
   return "{\n  \"proposal\": " + std::to_string(rank) +
          ",\n  \"X_LU\": " + MatrixJson(X_LU.matrix()) + "\n}\n";
 }
 
-}  // namespace
-
 Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option,
                                    double memory_budget_mb) {
+  if (config.solver.scope == "global")
+    return GlobalProposeAndReport(config, out_option, memory_budget_mb);
   const double start = NowSeconds();
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
@@ -63,7 +63,7 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   PrepareOutputDir(out / "proposals");
   for (std::size_t k = 0; k < result.proposals.size(); ++k) {
     extra.emplace_back("proposals/proposal-" + std::to_string(k + 1) + ".json",
-                       PoseFileJson(result.proposals[k].X_LU, static_cast<int>(k + 1)));
+                       ProposalPoseJson(result.proposals[k].X_LU, static_cast<int>(k + 1)));
   }
   WriteReportFiles(out, files, extra);
 

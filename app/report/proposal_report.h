@@ -13,7 +13,11 @@
 
 namespace occlude::app {
 
-/// Searches, writes the proposals and the report of the best to OutputFolder(config,
+/// The pose file of proposal `rank` (proposals/proposal-K.json): {"proposal": K, "X_LU": ...}.
+std::string ProposalPoseJson(const Eigen::Isometry3d& X_LU, int rank);
+
+/// Searches (in global scope, global_proposal_report.h, when config.solver.scope is
+/// "global"), writes the proposals and the report of the best to OutputFolder(config,
 /// out_option) and prints them; returns the best pose X_LU. `memory_budget_mb` > 0 is the
 /// command's --memory-budget-mb (session/memory_guard.h).
 Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& out_option,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "base/user_error.h"
 #include "occlude/collision/arch_frame.h"
@@ -119,6 +120,12 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : co
   arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
   pivot_L_ = config_.start.pivot_mm.value_or(collision::UpperOcclusalCentre(
       *jaws_.upper_U, Eigen::Isometry3d::Identity(), arch_.occlusal_L));
+}
+
+void CaseSession::UseArchFrame(const collision::ArchFrame& arch) {
+  if (!models_.empty())
+    throw std::logic_error("CaseSession::UseArchFrame after an oracle was built");
+  arch_ = arch;
 }
 
 Eigen::Isometry3d CaseSession::ConfigStartPose() const { return StartPoseOf(config_, pivot_L_); }

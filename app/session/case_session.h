@@ -59,6 +59,9 @@ class CaseSession {
   const CaseConfig& config() const { return config_; }
   const JawPair& jaws() const { return jaws_; }
   const collision::ArchFrame& arch() const { return arch_; }
+  /// Replaces the arch frame the oracles are built with (e.g. the global search's, from the
+  /// arch analysis); only before the first oracle is built (throws std::logic_error after).
+  void UseArchFrame(const collision::ArchFrame& arch);
   /// The rotation pivot in L (at identity U = L): the config's pivot_mm or the centre of the
   /// upper arch's occlusal surface.
   const Eigen::Vector3d& pivot_L() const { return pivot_L_; }

@@ -14,6 +14,7 @@
 #include "base/percentile.h"
 #include "base/timing.h"
 #include "base/user_error.h"
+#include "validate/validate_internal.h"
 
 namespace occlude::app {
 namespace {
@@ -121,6 +122,30 @@ struct Setup {
   planner::PlanRequest base;
 };
 
+}  // namespace
+
+void RunInParallel(std::size_t count, const ValidateOptions& options,
+                   const std::function<void(std::size_t)>& run) {
+  std::atomic<std::size_t> next{0}, done{0};
+  std::mutex log_mutex;
+  auto worker = [&]() {
+    for (std::size_t j = next++; j < count; j = next++) {
+      run(j);
+      const std::size_t n = ++done;
+      if (options.log && (n % 10 == 0 || n == count)) {
+        std::lock_guard<std::mutex> lock(log_mutex);
+        *options.log << "validate: " << n << " / " << count << " runs\n" << std::flush;
+      }
+    }
+  };
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+}
+
 planner::PlanRequest BaseRequest(const ValidateOptions& options) {
   planner::PlanRequest base;
   base.contact_band_mm = options.contact_band_mm;
@@ -147,6 +172,8 @@ std::vector<std::vector<PoseParameters>> Perturbations(const ValidateOptions& op
   }
   return perturb;
 }
+
+namespace {
 
 // One solver from one perturbed start, within the magnitude plus the bound margins.
 ValidateRun RunJob(const Job& job, const PoseParameters& perturbation, const Setup& setup,
@@ -199,26 +226,11 @@ std::vector<ValidateRun> RunJobs(const Setup& setup, const ValidateOptions& opti
     }
   }
   std::vector<ValidateRun> runs(jobs.size());
-  std::atomic<std::size_t> next{0}, done{0};
-  std::mutex log_mutex;
-  auto worker = [&]() {
-    for (std::size_t j = next++; j < jobs.size(); j = next++) {
-      const Job& job = jobs[j];
-      runs[j] =
-          RunJob(job, perturb[job.magnitude][static_cast<std::size_t>(job.start)], setup, options);
-      const std::size_t n = ++done;
-      if (options.log && (n % 10 == 0 || n == jobs.size())) {
-        std::lock_guard<std::mutex> lock(log_mutex);
-        *options.log << "validate: " << n << " / " << jobs.size() << " runs\n" << std::flush;
-      }
-    }
-  };
-  const int threads =
-      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  RunInParallel(jobs.size(), options, [&](std::size_t j) {
+    const Job& job = jobs[j];
+    runs[j] =
+        RunJob(job, perturb[job.magnitude][static_cast<std::size_t>(job.start)], setup, options);
+  });
   return runs;
 }
 

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "occlude/planner/global_search.h"
 #include "occlude/planner/plan.h"
 #include "session/jaw_pair.h"
 
@@ -54,6 +55,8 @@ struct ValidateOptions {
   double success_mm = 0.3, success_deg = 1.0;
   int path_steps = 20;          ///< poses on the reference check's path (ReferenceCheck)
   std::ostream* log = nullptr;  ///< progress lines
+  /// `--global` only (validate_global.h): the global search's scan.
+  planner::GlobalScanSettings global_scan;
 };
 
 struct ValidateRun {
