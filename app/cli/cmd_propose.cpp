@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -16,10 +17,12 @@ struct ProposeArgs {
   std::string config;
   std::string out;
   double memory_budget_mb = 0;
+  CacheArgs cache;
 };
 
 void RunPropose(const ProposeArgs& args) {
-  ProposeAndReport(LoadCaseConfig(args.config), args.out, args.memory_budget_mb);
+  ProposeAndReport(WithCacheArgs(LoadCaseConfig(args.config), args.cache), args.out,
+                   args.memory_budget_mb);
 }
 
 }  // namespace
@@ -32,6 +35,7 @@ void AddProposeCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddCacheOptions(cmd, &args->cache);
   cmd->callback([args] { RunPropose(*args); });
 }
 

@@ -18,6 +18,7 @@
 #include "base/output_files.h"
 #include "base/timing.h"
 #include "base/user_error.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_output.h"
@@ -42,6 +43,7 @@ struct RefineArgs {
   int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
   double poll_seconds = 0.2;
   double memory_budget_mb = 0;
+  CacheArgs cache;
 };
 
 json Metrics(const planner::PoseEvaluation& e) {
@@ -137,7 +139,7 @@ std::filesystem::file_time_type ModifiedAt(const std::filesystem::path& file) {
 }
 
 void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = LoadCaseConfig(args.config);
+  const CaseConfig config = WithCacheArgs(LoadCaseConfig(args.config), args.cache);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
@@ -161,7 +163,7 @@ void RunRefine(const RefineArgs& args) {
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = LoadCaseConfig(config.file);
+      const CaseConfig updated = WithCacheArgs(LoadCaseConfig(config.file), args.cache);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -185,6 +187,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("config", args->config, "Case config file (TOML; see examples/)")->required();
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddCacheOptions(cmd, &args->cache);
   cmd->add_flag("--from-config", args->from_config,
                 "Start from the config's [start] pose, not the last result");
   cmd->add_flag("--watch", args->watch,

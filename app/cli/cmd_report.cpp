@@ -7,6 +7,7 @@
 
 #include "base/output_files.h"
 #include "base/timing.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -25,11 +26,12 @@ struct ReportArgs {
   std::string pose;
   std::string out;
   double memory_budget_mb = 0;
+  CacheArgs cache;
 };
 
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
-  const CaseConfig config = LoadCaseConfig(args.config);
+  const CaseConfig config = WithCacheArgs(LoadCaseConfig(args.config), args.cache);
   // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
   // optional's aligned Eigen payload being used uninitialized.)
   const bool pose_file = !args.pose.empty();
@@ -70,6 +72,7 @@ void AddReportCommand(CLI::App& app) {
                   "Pose file (JSON with a 4x4 \"X_LU\"); default: the config's start pose");
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddCacheOptions(cmd, &args->cache);
   cmd->callback([args] { RunReport(*args); });
 }
 

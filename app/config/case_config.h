@@ -29,7 +29,8 @@
 //   [report]    map_max_mm = 0.5 (colour scale); map_penetration_from_mm = 0.01;
 //               image_width_px = 1000
 //   [limits]    memory_budget_mb (what the trees and fields may take; default a quarter
-//               of the physical memory; --memory-budget-mb overrides)
+//               of the physical memory; --memory-budget-mb overrides); cache_mb = 2048
+//               (the oracle cache's size, session/oracle_cache.h)
 //
 // Poses: X_LU is the pose of the upper mesh as given (frame U) in the lower's frame L;
 // translation/rotation parameters follow planner::ComposePose about the pivot with the
@@ -130,6 +131,11 @@ struct CaseConfig {
   std::optional<std::filesystem::path> output_dir;  ///< absolute when set
   ReportSettings report;
   std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget
+  double cache_mb = 2048;                  ///< [limits] cache_mb
+  /// The oracle cache (session/oracle_cache.h): off with --no-cache; the folder of --cache
+  /// DIR, empty = the default folder. Set by the commands, not by the file.
+  bool cache_enabled = true;
+  std::filesystem::path cache_folder;
 
   /// The finest voxel size the oracle uses: voxel_mm, or chosen for accuracy_mm.
   double VoxelSizeMm() const;
