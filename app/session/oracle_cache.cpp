@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "occlude/collision/oracle_file.h"
+#include "occlude/io/atomic_file.h"
 #include "occlude/io/mesh_io.h"
 
 namespace occlude::app {
@@ -88,17 +89,22 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
       last_ = OracleCacheOutcome::kRebuilt;
     }
   }
-  std::unique_ptr<collision::JawOracle> oracle = build();
-  Save(*oracle, file);
-  return oracle;
+  std::unique_ptr<collision::JawOracle> built = build();
+  const std::string bytes = collision::SaveOracle(*built);
+  Save(bytes, file);
+  // The run goes on with the saved form, so that a miss and a later hit are the same object
+  // (down to MemoryBytes(), which counts a built oracle's spare capacity).
+  built.reset();
+  return std::make_unique<collision::JawOracle>(
+      collision::LoadOracle(bytes, std::move(lower_L), std::move(upper_U), options));
 }
 
-void OracleCache::Save(const collision::JawOracle& oracle, const fs::path& file) {
+void OracleCache::Save(const std::string& bytes, const fs::path& file) {
   std::error_code ec;
   fs::create_directories(folder_, ec);
   try {
     if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
-    collision::SaveOracleFile(oracle, file);
+    io::WriteFileAtomically(file, bytes);
   } catch (const std::exception& e) {
     Warn("oracle cache not written (" + std::string(e.what()) +
              "); going on without it (--cache DIR for another folder, --no-cache to skip it)",

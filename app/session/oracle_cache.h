@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <ostream>
+#include <string>
 
 #include "occlude/collision/oracle.h"
 #include "occlude/io/triangle_mesh.h"
@@ -47,7 +48,8 @@ class OracleCache {
   explicit OracleCache(OracleCacheSettings settings, std::ostream* warnings);
 
   /// The oracle of these meshes and options: loaded from the folder when an entry of its key
-  /// passes every check, else `build()` (then saved, and the folder evicted to its limit).
+  /// passes every check, else `build()` (then saved, the folder evicted to its limit, and
+  /// the saved form returned: a miss answers and reports exactly as a later hit).
   std::unique_ptr<collision::JawOracle> Get(
       std::shared_ptr<const io::TriangleMesh> lower_L,
       std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
@@ -63,7 +65,7 @@ class OracleCache {
   std::ostream* warnings_;
   bool warned_write_ = false;
   OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
-  void Save(const collision::JawOracle& oracle, const std::filesystem::path& file);
+  void Save(const std::string& bytes, const std::filesystem::path& file);
   void Warn(const std::string& line, bool* once);
 };
 

@@ -115,6 +115,8 @@ TEST_F(OracleCacheTest, SecondGetIsAHitThatAnswersBitIdenticallyToAFreshBuild) {
   EXPECT_EQ(builds_, 1);
   EXPECT_EQ(Digest(*loaded), Digest(*fresh_));
   EXPECT_EQ(Digest(*built), Digest(*fresh_));
+  // A miss goes on with the saved form: the same MemoryBytes() (metrics.json) as a hit.
+  EXPECT_EQ(loaded->MemoryBytes(), built->MemoryBytes());
   EXPECT_EQ(warnings_.str(), "");
 }
 
