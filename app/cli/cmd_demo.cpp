@@ -14,6 +14,7 @@
 #include "base/output_files.h"
 #include "base/timing.h"
 #include "bench/sweep.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -37,6 +38,7 @@ struct DemoArgs {
   int reps = 30;
   std::string out = "out/demo";
   double memory_budget_mb = 0;
+  CacheArgs cache;
   bool sweep = false;
 };
 
@@ -123,7 +125,7 @@ void RunSweepDemo(const DemoArgs& args) {
 void RunDemo(const DemoArgs& args) {
   const std::filesystem::path out = std::filesystem::absolute(args.out).lexically_normal();
   const std::string text = DemoConfig(args);
-  const CaseConfig config = ParseCaseConfig(text, out / "case.toml");
+  const CaseConfig config = WithCacheArgs(ParseCaseConfig(text, out / "case.toml"), args.cache);
   std::cout << "demo: occlude propose on the built-in synthetic pair (" << args.triangles
             << " triangles per jaw, seed " << args.seed
             << "), from a start 1.6 mm / 2 deg off the designed bite\n";
@@ -176,6 +178,7 @@ void AddDemoCommand(CLI::App& app) {
                 "Also time the sphere-tree queries along the occlusal axis through the bite "
                 "(demo.txt, demo.json)");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
+  AddCacheOptions(cmd, &args->cache);
   cmd->callback([cmd, args] {
     args->voxel_given = cmd->count("--voxel") > 0;
     RunDemo(*args);

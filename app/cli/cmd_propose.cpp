@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -19,10 +20,12 @@ struct ProposeArgs {
   std::string landmarks;
   double memory_budget_mb = 0;
   bool global = false;
+  CacheArgs cache;
 };
 
 void RunPropose(const ProposeArgs& args) {
-  CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
+  CaseConfig config =
+      WithCacheArgs(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.cache);
   if (args.global) config.solver.scope = "global";
   ProposeAndReport(config, args.out, args.memory_budget_mb);
 }
@@ -41,6 +44,7 @@ void AddProposeCommand(CLI::App& app) {
                 "the two arches, ranked by [clinical]");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   AddLandmarksOption(cmd, &args->landmarks);
+  AddCacheOptions(cmd, &args->cache);
   cmd->callback([args] { RunPropose(*args); });
 }
 

@@ -29,6 +29,7 @@
 #include "base/output_files.h"
 #include "base/timing.h"
 #include "base/user_error.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "cli/refine_live.h"
@@ -59,7 +60,13 @@ struct RefineArgs {
   double memory_budget_mb = 0;
   std::vector<int> serve;  ///< --serve [PORT]: {PORT}, {0} without one; empty = not serving
   std::string bind;        ///< --bind ADDR
+  CacheArgs cache;
 };
+
+// The config `file` with the command line's --landmarks and cache options applied.
+CaseConfig LoadRefineConfig(const std::filesystem::path& file, const RefineArgs& args) {
+  return WithCacheArgs(WithLandmarksOption(LoadCaseConfig(file), args.landmarks), args.cache);
+}
 
 json Metrics(const planner::PoseEvaluation& e) {
   return {{"contact_area_mm2", e.contact_area_mm2},
@@ -344,7 +351,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = WithLandmarksOption(LoadCaseConfig(file), args.landmarks);
+      const CaseConfig updated = LoadRefineConfig(file, args);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -361,7 +368,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
 }
 
 void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
+  const CaseConfig config = LoadRefineConfig(args.config, args);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
@@ -394,6 +401,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   AddLandmarksOption(cmd, &args->landmarks);
+  AddCacheOptions(cmd, &args->cache);
   cmd->add_flag("--from-config", args->from_config,
                 "Start from the config's [start] pose, not the last result");
   auto* watch = cmd->add_flag("--watch", args->watch,

@@ -7,6 +7,7 @@
 
 #include "base/output_files.h"
 #include "base/timing.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -26,11 +27,13 @@ struct ReportArgs {
   std::string out;
   std::string landmarks;
   double memory_budget_mb = 0;
+  CacheArgs cache;
 };
 
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
-  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
+  const CaseConfig config =
+      WithCacheArgs(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.cache);
   // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
   // optional's aligned Eigen payload being used uninitialized.)
   const bool pose_file = !args.pose.empty();
@@ -72,6 +75,7 @@ void AddReportCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "Output folder; default: [output] folder of the config");
   AddMemoryBudgetOption(cmd, &args->memory_budget_mb);
   AddLandmarksOption(cmd, &args->landmarks);
+  AddCacheOptions(cmd, &args->cache);
   cmd->callback([args] { RunReport(*args); });
 }
 

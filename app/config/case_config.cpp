@@ -71,6 +71,7 @@ std::vector<std::string> AllDottedKeys() {
           "report.map_penetration_from_mm",
           "report.image_width_px",
           "limits.memory_budget_mb",
+          "limits.cache_mb",
           "refine.hold",
           "landmarks.file",
           "clinical.molar_class",
@@ -367,9 +368,11 @@ void ReadAll(const Table& root, CaseConfig* c) {
   if (auto t = root.SubTable("landmarks")) ReadLandmarks(*t, c);
   if (auto t = root.SubTable("clinical")) c->clinical = ReadClinicalTable(*t);
   if (auto t = root.SubTable("limits")) {
-    t->AllowOnly({"memory_budget_mb"});
+    t->AllowOnly({"memory_budget_mb", "cache_mb"});
     c->memory_budget_mb =
         t->Number("memory_budget_mb", 0, true, 1e9, false, "a positive number of megabytes");
+    c->cache_mb = t->Number("cache_mb", 0, false, 1e9, false, "a number of megabytes, 0 or more")
+                      .value_or(c->cache_mb);
   }
   if (c->report.map_max_mm < c->contact_band_mm) {
     root.Fail("report",

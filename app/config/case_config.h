@@ -37,7 +37,8 @@
 //   [report]    map_max_mm = 0.5 (colour scale); map_penetration_from_mm = 0.01;
 //               image_width_px = 1000
 //   [limits]    memory_budget_mb (what the trees and fields may take; default a quarter
-//               of the physical memory; --memory-budget-mb overrides)
+//               of the physical memory; --memory-budget-mb overrides); cache_mb = 2048
+//               (the oracle cache's size, session/oracle_cache.h)
 //   [landmarks] file = "landmarks.csv" (given landmarks overriding detected ones, the format
 //               of occlude/io/landmark_file.h; --landmarks overrides)
 //
@@ -157,6 +158,11 @@ struct CaseConfig {
   std::optional<double> memory_budget_mb;  ///< [limits]; nullopt = the default budget
   /// [landmarks] file (absolute, checked to exist), or a command's --landmarks.
   std::optional<std::filesystem::path> landmarks_file;
+  double cache_mb = 2048;  ///< [limits] cache_mb
+  /// The oracle cache (session/oracle_cache.h): off with --no-cache; the folder of --cache
+  /// DIR, empty = the default folder. Set by the commands, not by the file.
+  bool cache_enabled = true;
+  std::filesystem::path cache_folder;
 
   /// The finest voxel size the oracle uses: voxel_mm, or chosen for accuracy_mm.
   double VoxelSizeMm() const;

@@ -134,10 +134,17 @@ std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
     std::shared_ptr<const io::TriangleMesh> lower_L,
     std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
     const std::string& what) {
+  if (!cache_) {
+    cache_ = std::make_unique<OracleCache>(
+        OracleCacheSettings{config_.cache_enabled, config_.cache_folder, config_.cache_mb},
+        &std::cerr);
+  }
   StepClock clock;
   clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
   try {
-    return std::make_unique<collision::JawOracle>(std::move(lower_L), std::move(upper_U), options);
+    return cache_->Get(lower_L, upper_U, options, [&] {
+      return std::make_unique<collision::JawOracle>(lower_L, upper_U, options);
+    });
   } catch (const collision::VoxelizeError& e) {
     throw UserError(config_.file.string() + ": accuracy: " + e.what());
   }

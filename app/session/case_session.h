@@ -22,6 +22,7 @@
 #include "occlude/planner/request.h"
 #include "session/case_analysis.h"
 #include "session/jaw_pair.h"
+#include "session/oracle_cache.h"
 #include "session/session_region.h"
 
 namespace occlude::app {
@@ -110,6 +111,7 @@ class CaseSession {
   // what every oracle built holds.
   std::unique_ptr<collision::JawOracle> whole_finest_;
   std::vector<OracleModel> models_;
+  std::unique_ptr<OracleCache> cache_;  ///< made on the first oracle (config_'s cache settings)
   std::unique_ptr<collision::JawOracle> BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
                                                     std::shared_ptr<const io::TriangleMesh> upper_U,
                                                     const collision::OracleOptions& options,

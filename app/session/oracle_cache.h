@@ -1,0 +1,78 @@
+// The cache of built oracles (the paper's saved IST): each oracle a session builds is saved in
+// a folder under its collision::OracleCacheKey (both meshes' content hashes, every option that
+// changes what is built, the format version) and loaded from there by the next run instead of
+// being built again. Answers of a loaded oracle are bit-identical to a fresh build
+// (collision/oracle_file.h).
+//
+// Folder: the command's --cache DIR, else $XDG_CACHE_HOME/occlude, else ~/.cache/occlude.
+// Entries are "oracle-<key as 16 hex digits>.occo", written to a temporary file and renamed
+// (a concurrent run never sees half an entry). A hit touches the entry's mtime; after a save
+// the oldest entries (by mtime) are unlinked until the folder's entries fit in `max_mb`; only
+// files of our name and magic are ever removed. A truncated, corrupt, foreign or mismatched
+// entry is rebuilt and replaced. A folder that cannot be made, read or written is one warning
+// line on the warning stream and the run goes on without it; the cache never fails a run.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "occlude/collision/oracle.h"
+#include "occlude/io/triangle_mesh.h"
+
+namespace occlude::app {
+
+/// Where and whether a run caches its oracles.
+struct OracleCacheSettings {
+  bool enabled = true;           ///< false with --no-cache
+  std::filesystem::path folder;  ///< --cache DIR; empty = DefaultCacheFolder()
+  double max_mb = 2048;          ///< [limits] cache_mb: the entries' total size, MB
+};
+
+/// $XDG_CACHE_HOME/occlude when XDG_CACHE_HOME is set and absolute, else $HOME/.cache/occlude;
+/// empty when neither is set (the cache is then off).
+std::filesystem::path DefaultCacheFolder();
+
+/// The file name of the entry of `key`: "oracle-<16 hex digits>.occo".
+std::string OracleCacheEntryName(std::uint64_t key);
+
+/// How the last Get was answered (for tests and the step lines).
+enum class OracleCacheOutcome { kOff, kHit, kMiss, kRebuilt };
+
+class OracleCache {
+ public:
+  /// Warnings (one line each, at most one per kind of trouble) go to `warnings`.
+  explicit OracleCache(OracleCacheSettings settings, std::ostream* warnings);
+
+  /// The oracle of these meshes and options: loaded from the folder when an entry of its key
+  /// passes every check, else `build()` (then saved, the folder evicted to its limit, and
+  /// the saved form returned: a miss answers and reports exactly as a later hit).
+  std::unique_ptr<collision::JawOracle> Get(
+      std::shared_ptr<const io::TriangleMesh> lower_L,
+      std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
+      const std::function<std::unique_ptr<collision::JawOracle>()>& build);
+
+  /// The folder in use (empty when the cache is off).
+  const std::filesystem::path& folder() const { return folder_; }
+  OracleCacheOutcome last_outcome() const { return last_; }
+
+ private:
+  std::filesystem::path folder_;
+  double max_mb_;
+  std::ostream* warnings_;
+  bool warned_write_ = false;
+  OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
+  void Save(const std::string& bytes, const std::filesystem::path& file);
+  void Warn(const std::string& line, bool* once);
+};
+
+/// Unlinks the oldest (by mtime) of the cache entries in `folder` (files named like
+/// OracleCacheEntryName and starting with the saved-oracle magic) until their total size is at
+/// most `max_bytes`; `keep` is never removed. Errors are ignored (another run may be evicting).
+void EvictOracleCache(const std::filesystem::path& folder, std::uintmax_t max_bytes,
+                      const std::filesystem::path& keep);
+
+}  // namespace occlude::app

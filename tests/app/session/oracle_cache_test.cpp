@@ -1,0 +1,263 @@
+// The oracle cache (session/oracle_cache.h) on a small synthetic bite at coarse voxels: a hit
+// answers bit-identically to a fresh build; a changed mesh byte or setting misses; truncated,
+// corrupt and foreign entries are rebuilt and replaced; concurrent writers leave one valid
+// entry; eviction removes the least recently used entries of our format only; a read-only
+// folder is one warning line. Every test uses its own temporary folder.
+#include "session/oracle_cache.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "occlude/collision/oracle_file.h"
+#include "occlude/io/content_hash.h"
+#include "session/jaw_pair.h"
+#include "test_common.h"
+
+namespace occlude::app {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+using MeshPtr = std::shared_ptr<const io::TriangleMesh>;
+
+class OracleCacheTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    jaws_ = new JawPair(AtReference(SyntheticJawPair(5000, 5)));
+    options_.voxel_size_mm = 0.8;
+    fresh_ = new collision::JawOracle(jaws_->lower_L, jaws_->upper_U, options_);
+  }
+  static void TearDownTestSuite() {
+    delete fresh_;
+    delete jaws_;
+  }
+
+  // A "build" of the suite's oracle (a copy of the one built once), or a real one for other
+  // meshes or options.
+  static std::unique_ptr<collision::JawOracle> Build(MeshPtr lower,
+                                                     const collision::OracleOptions& options) {
+    if (lower == jaws_->lower_L && options.sample_spacing_mm == options_.sample_spacing_mm) {
+      return std::make_unique<collision::JawOracle>(*fresh_);
+    }
+    return std::make_unique<collision::JawOracle>(lower, jaws_->upper_U, options);
+  }
+
+  // Gets the oracle through a cache in `folder`, counting builds.
+  std::unique_ptr<collision::JawOracle> Get(const fs::path& folder, OracleCacheOutcome* outcome,
+                                            const collision::OracleOptions& options = options_,
+                                            MeshPtr lower = nullptr) {
+    OracleCacheSettings settings;
+    settings.folder = folder;
+    OracleCache cache(settings, &warnings_);
+    const MeshPtr l = lower ? lower : jaws_->lower_L;
+    auto oracle = cache.Get(l, jaws_->upper_U, options, [&] {
+      ++builds_;
+      return Build(l, options);
+    });
+    *outcome = cache.last_outcome();
+    return oracle;
+  }
+
+  // The hash of the answers at a few poses about the reference, at every level.
+  static std::uint64_t Digest(const collision::JawOracle& oracle) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> shift(-0.4, 0.4);
+    io::Hasher64 hash;
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Isometry3d X(
+          Eigen::Translation3d(Eigen::Vector3d(shift(rng), shift(rng), shift(rng))));
+      for (const auto level :
+           {collision::AccuracyLevel::kVoxel, collision::AccuracyLevel::kSubVoxel,
+            collision::AccuracyLevel::kExact}) {
+        collision::OracleRequest request;
+        request.level = level;
+        collision::OracleResult result;
+        oracle.Query(X, request, &result);
+        collision::HashOracleResult(result, &hash);
+      }
+    }
+    return hash.Finish();
+  }
+
+  fs::path EntryOf(const fs::path& folder) const {
+    return folder / OracleCacheEntryName(
+                        collision::OracleCacheKey(*jaws_->lower_L, *jaws_->upper_U, options_));
+  }
+
+  static JawPair* jaws_;
+  static collision::OracleOptions options_;
+  static collision::JawOracle* fresh_;
+  std::ostringstream warnings_;
+  int builds_ = 0;
+};
+JawPair* OracleCacheTest::jaws_ = nullptr;
+collision::OracleOptions OracleCacheTest::options_;
+collision::JawOracle* OracleCacheTest::fresh_ = nullptr;
+
+TEST_F(OracleCacheTest, SecondGetIsAHitThatAnswersBitIdenticallyToAFreshBuild) {
+  TempDir dir;
+  OracleCacheOutcome outcome;
+  const auto built = Get(dir.path(), &outcome);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kMiss);
+  ASSERT_TRUE(fs::exists(EntryOf(dir.path())));
+  const auto loaded = Get(dir.path(), &outcome);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kHit);
+  EXPECT_EQ(builds_, 1);
+  EXPECT_EQ(Digest(*loaded), Digest(*fresh_));
+  EXPECT_EQ(Digest(*built), Digest(*fresh_));
+  // A miss goes on with the saved form: the same MemoryBytes() (metrics.json) as a hit.
+  EXPECT_EQ(loaded->MemoryBytes(), built->MemoryBytes());
+  EXPECT_EQ(warnings_.str(), "");
+}
+
+TEST_F(OracleCacheTest, AChangedMeshByteOrSettingMisses) {
+  TempDir dir;
+  OracleCacheOutcome outcome;
+  Get(dir.path(), &outcome);
+  collision::OracleOptions other = options_;
+  other.sample_spacing_mm *= 1.5;
+  Get(dir.path(), &outcome, other);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kMiss);
+  auto moved = std::make_shared<io::TriangleMesh>(*jaws_->lower_L);
+  moved->vertices[0].x() += 1e-3;
+  Get(dir.path(), &outcome, options_, moved);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kMiss);
+  EXPECT_EQ(builds_, 3);
+  Get(dir.path(), &outcome);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kHit);
+}
+
+TEST_F(OracleCacheTest, TruncatedCorruptAndForeignEntriesAreRebuiltAndReplaced) {
+  TempDir dir;
+  OracleCacheOutcome outcome;
+  const auto first = Get(dir.path(), &outcome);
+  const std::uint64_t digest = Digest(*first);
+  const fs::path entry = EntryOf(dir.path());
+  const std::uintmax_t size = fs::file_size(entry);
+  for (const std::string damage : {"truncated", "corrupt", "foreign"}) {
+    if (damage == "truncated") fs::resize_file(entry, size / 2);
+    if (damage == "corrupt") {
+      std::fstream f(entry, std::ios::in | std::ios::out | std::ios::binary);
+      f.seekp(static_cast<std::streamoff>(size - 7));
+      f.put('\x5a');
+    }
+    if (damage == "foreign") std::ofstream(entry, std::ios::binary) << "solid x\nendsolid x\n";
+    const auto rebuilt = Get(dir.path(), &outcome);
+    EXPECT_EQ(outcome, OracleCacheOutcome::kRebuilt) << damage;
+    EXPECT_EQ(Digest(*rebuilt), digest) << damage;
+    EXPECT_EQ(fs::file_size(entry), size) << damage;  // replaced by a whole entry
+    Get(dir.path(), &outcome);
+    EXPECT_EQ(outcome, OracleCacheOutcome::kHit) << damage;
+  }
+  EXPECT_NE(warnings_.str().find("rebuilding"), std::string::npos) << warnings_.str();
+}
+
+TEST_F(OracleCacheTest, ConcurrentWritersLeaveOneValidEntryAndNoTemporaryFiles) {
+  TempDir dir;
+  std::atomic<int> builds{0};
+  auto run = [&] {
+    OracleCacheSettings settings;
+    settings.folder = dir.path();
+    OracleCache cache(settings, nullptr);
+    for (int i = 0; i < 3; ++i) {
+      cache.Get(jaws_->lower_L, jaws_->upper_U, options_, [&] {
+        ++builds;
+        return Build(jaws_->lower_L, options_);
+      });
+    }
+  };
+  std::thread a(run), b(run);
+  a.join();
+  b.join();
+  EXPECT_GE(builds.load(), 1);
+  EXPECT_LE(builds.load(), 2);  // each writer builds at most once, then hits
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir.path())) {
+    ++files;
+    EXPECT_EQ(e.path(), EntryOf(dir.path()));
+  }
+  EXPECT_EQ(files, 1);
+  OracleCacheOutcome outcome;
+  Get(dir.path(), &outcome);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kHit);
+}
+
+TEST_F(OracleCacheTest, EvictionRemovesTheLeastRecentlyUsedEntriesOfOurFormatOnly) {
+  TempDir dir;
+  OracleCacheOutcome outcome;
+  Get(dir.path(), &outcome);
+  const fs::path entry = EntryOf(dir.path());
+  const std::uintmax_t size = fs::file_size(entry);
+  // Three copies of the entry under other keys, aged oldest to newest, and a foreign file
+  // named like an entry.
+  const auto now = fs::file_time_type::clock::now();
+  std::vector<fs::path> copies;
+  for (int i = 0; i < 3; ++i) {
+    copies.push_back(dir / OracleCacheEntryName(0x100 + i));
+    fs::copy_file(entry, copies.back());
+    fs::last_write_time(copies.back(), now - std::chrono::hours(3 - i));
+  }
+  const fs::path foreign = dir / OracleCacheEntryName(0x999);
+  std::ofstream(foreign) << "not an oracle";
+  fs::last_write_time(foreign, now - std::chrono::hours(10));
+  EvictOracleCache(dir.path(), 2 * size, entry);
+  EXPECT_TRUE(fs::exists(entry));
+  EXPECT_FALSE(fs::exists(copies[0]));
+  EXPECT_FALSE(fs::exists(copies[1]));
+  EXPECT_TRUE(fs::exists(copies[2]));
+  EXPECT_TRUE(fs::exists(foreign));
+  // A hit touches: the oldest entry, once hit, outlives a newer one.
+  fs::last_write_time(entry, now - std::chrono::hours(5));
+  Get(dir.path(), &outcome);
+  EXPECT_EQ(outcome, OracleCacheOutcome::kHit);
+  EvictOracleCache(dir.path(), size, "");
+  EXPECT_TRUE(fs::exists(entry));
+  EXPECT_FALSE(fs::exists(copies[2]));
+}
+
+// Read-only for a user; for root (who writes anywhere) a folder under a regular file, which
+// cannot be made either.
+TEST_F(OracleCacheTest, AnUnwritableFolderIsOneWarningLineNotAFailure) {
+  TempDir dir;
+  fs::path folder = dir / "ro";
+  fs::create_directory(folder);
+  fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec);
+  if (geteuid() == 0) {
+    std::ofstream(dir / "file") << "x";
+    folder = dir / "file" / "cache";
+  }
+  OracleCacheOutcome outcome;
+  EXPECT_NE(Get(folder, &outcome), nullptr);
+  EXPECT_NE(Get(folder, &outcome), nullptr);
+  fs::permissions(dir / "ro", fs::perms::owner_all);
+  EXPECT_EQ(builds_, 2);
+  const std::string text = warnings_.str();
+  EXPECT_NE(text.find("warning: oracle cache not written"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;  // one per cache object
+}
+
+TEST_F(OracleCacheTest, OffBuildsAndWritesNothing) {
+  TempDir dir;
+  OracleCacheSettings settings;
+  settings.enabled = false;
+  settings.folder = dir.path();
+  OracleCache cache(settings, &warnings_);
+  EXPECT_TRUE(cache.folder().empty());
+  cache.Get(jaws_->lower_L, jaws_->upper_U, options_,
+            [&] { return Build(jaws_->lower_L, options_); });
+  EXPECT_EQ(cache.last_outcome(), OracleCacheOutcome::kOff);
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+}  // namespace
+}  // namespace occlude::app
