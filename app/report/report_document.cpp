@@ -10,6 +10,7 @@
 #include "base/output_files.h"
 #include "report/relationships_json_internal.h"
 #include "report/relationships_table.h"
+#include "viewer/html_text.h"
 
 namespace occlude::app {
 namespace {
@@ -100,29 +101,6 @@ std::string HtmlNumber(double v, int decimals) {
   return s.str();
 }
 
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (const char ch : text) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out;
-}
-
 std::string Row(const std::string& name, const std::string& value) {
   return "<tr><th>" + name + "</th><td>" + value + "</td></tr>\n";
 }
@@ -136,7 +114,7 @@ std::string PoseSection(const ReportInputs& in) {
   const ReportAnalysis& a = *in.analysis;
   std::ostringstream s;
   s << "<h2>Pose of the upper jaw</h2>\n<table>\n"
-    << Row("source", Escape(in.pose_source))
+    << Row("source", HtmlEscape(in.pose_source))
     << Row("translation (mm)", Triple(a.params.translation_mm, 3))
     << Row("rotation (deg, rotation vector about the pivot)", Triple(a.params.rotation_deg, 3))
     << Row("pivot (mm, in L)", Triple(a.pivot_L, 2))
@@ -199,12 +177,12 @@ std::string TeethSection(const ReportInputs& in) {
 std::string SettingsSection(const ReportInputs& in) {
   const json settings = Settings(*in.config, *in.analysis);
   std::ostringstream s;
-  s << "<h2>Settings</h2>\n<table>\n" << Row("config file", Escape(in.config->file.string()));
-  for (const auto& [k, v] : settings.items()) s << Row(Escape(k), Escape(v.dump()));
+  s << "<h2>Settings</h2>\n<table>\n" << Row("config file", HtmlEscape(in.config->file.string()));
+  for (const auto& [k, v] : settings.items()) s << Row(HtmlEscape(k), HtmlEscape(v.dump()));
   s << Row("meshes", std::to_string(in.jaws->lower_L->num_triangles()) + " lower, " +
                          std::to_string(in.jaws->upper_U->num_triangles()) + " upper triangles");
   for (const auto& [step, seconds] : in.analysis->timings_s)
-    s << Row("time: " + Escape(step), HtmlNumber(seconds, 2) + " s");
+    s << Row("time: " + HtmlEscape(step), HtmlNumber(seconds, 2) + " s");
   s << "</table>\n";
   return s.str();
 }
@@ -298,8 +276,8 @@ std::string ReportHtml(const ReportInputs& in) {
   std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
   std::ostringstream s;
   s << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Occlusion report: "
-    << Escape(in.config->name) << "</title><style>" << kStyle << "</style></head><body>\n"
-    << "<h1>Occlusion report: " << Escape(in.config->name)
+    << HtmlEscape(in.config->name) << "</title><style>" << kStyle << "</style></head><body>\n"
+    << "<h1>Occlusion report: " << HtmlEscape(in.config->name)
     << "</h1>\n<p class=\"note\">occlude 0.1.0, " << stamp
     << ". Distances in mm; X<sub>LU</sub> is the pose of the upper jaw in the lower jaw's "
        "frame.</p>\n"
@@ -307,9 +285,9 @@ std::string ReportHtml(const ReportInputs& in) {
     << in.search_html;
   s << in.viewer_html << "<h2>Contact maps and views</h2>\n";
   for (const auto& p : in.pictures) {
-    s << "<figure><img alt=\"" << Escape(p.title) << "\" src=\"data:image/png;base64,"
-      << Base64(p.png) << "\"><figcaption class=\"note\">" << Escape(p.title) << " ("
-      << Escape(p.file) << ")</figcaption></figure>\n";
+    s << "<figure><img alt=\"" << HtmlEscape(p.title) << "\" src=\"data:image/png;base64,"
+      << Base64(p.png) << "\"><figcaption class=\"note\">" << HtmlEscape(p.title) << " ("
+      << HtmlEscape(p.file) << ")</figcaption></figure>\n";
   }
   s << TeethSection(in) << SettingsSection(in) << "</body></html>\n";
   return s.str();
