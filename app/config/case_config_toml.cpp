@@ -33,13 +33,33 @@ std::string OneLine(const std::string& text) {
   return out;
 }
 
+namespace {
+
+// Whether every character of `short_word` appears in `long_word` in order ("memory_mb" in
+// "memory_budget_mb"): an abbreviation, which a plain edit distance ranks below unrelated keys
+// of similar length ("cache_mb").
+// Only for a short word of 3 characters or more and at least half the long one, so that "tz"
+// or "mode" does not abbreviate every longer key.
+bool IsSubsequence(const std::string& short_word, const std::string& long_word) {
+  if (short_word.size() < 3 || 2 * short_word.size() < long_word.size()) return false;
+  std::size_t i = 0;
+  for (std::size_t j = 0; i < short_word.size() && j < long_word.size(); ++j) {
+    if (short_word[i] == long_word[j]) ++i;
+  }
+  return i == short_word.size();
+}
+
+}  // namespace
+
 std::string ClosestKey(const std::string& word, const std::vector<std::string>& candidates) {
+  // Abbreviations (either way) first, then the fewest edits.
   std::string best;
-  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  std::pair<bool, std::size_t> best_rank{true, std::numeric_limits<std::size_t>::max()};
   for (const auto& c : candidates) {
-    const std::size_t d = EditDistance(word, c);
-    if (d < best_d) {
-      best_d = d;
+    const bool abbreviation = IsSubsequence(word, c) || IsSubsequence(c, word);
+    const std::pair<bool, std::size_t> rank{!abbreviation, EditDistance(word, c)};
+    if (rank < best_rank) {
+      best_rank = rank;
       best = c;
     }
   }

@@ -17,7 +17,8 @@ namespace occlude::app::toml_config {
 /// that a message quoting keys or values from the file stays one line.
 std::string OneLine(const std::string& text);
 
-/// Closest string of `candidates` to `word` by edit distance (empty if none).
+/// The key of `candidates` `word` most likely meant: one it abbreviates (or that abbreviates
+/// it) first, then the fewest edits (empty if there are no candidates).
 std::string ClosestKey(const std::string& word, const std::vector<std::string>& candidates);
 
 class Table {

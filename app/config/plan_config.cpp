@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "base/user_error.h"
+#include "config/case_config_toml_internal.h"
 #include "occlude/planner/evaluation.h"
 
 namespace occlude::app {
@@ -33,14 +34,11 @@ std::string StringOption(const CaseConfig& config, const std::string& key,
   Fail(config, "solver.options." + key, "must be a string");
 }
 
+// The option `word` most likely meant (config/case_config_toml_internal.h), empty when even
+// that one is more than about half of `word` away.
 std::string Closest(const std::string& word, const std::vector<std::string>& keys) {
-  std::string best;
-  std::size_t best_d = word.size() / 2 + 2;
-  for (const auto& k : keys) {
-    const std::size_t d = EditDistance(word, k);
-    if (d < best_d) best_d = d, best = k;
-  }
-  return best;
+  std::string best = toml_config::ClosestKey(word, keys);
+  return EditDistance(word, best) < word.size() / 2 + 2 ? best : std::string();
 }
 
 void ApplyOption(const CaseConfig& config, const std::string& key, const SolverSettings::Value& v,
