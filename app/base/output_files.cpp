@@ -3,12 +3,11 @@
 
 #include <unistd.h>
 
-#include <cstdio>
-#include <fstream>
-#include <random>
 #include <sstream>
 
 #include "base/user_error.h"
+#include "occlude/io/atomic_file.h"
+#include "occlude/io/mesh_io.h"
 
 namespace occlude::app {
 
@@ -29,24 +28,10 @@ void PrepareOutputDir(const std::filesystem::path& dir) {
 }
 
 void WriteFileAtomic(const std::filesystem::path& file, const std::string& content) {
-  std::random_device rd;
-  const std::filesystem::path tmp =
-      file.parent_path() / ("." + file.filename().string() + ".tmp" + std::to_string(rd()));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw UserError(file.string() + ": cannot write (disk full or folder not writable?)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw UserError(file.string() + ": cannot replace the file (" + ec.message() + ")");
+  try {
+    io::WriteFileAtomically(file, content);
+  } catch (const io::MeshError& e) {
+    throw UserError(e.what());
   }
 }
 

@@ -13,7 +13,8 @@ namespace occlude::app {
 /// Throws UserError naming the folder and the fix.
 void PrepareOutputDir(const std::filesystem::path& dir);
 
-/// Writes `content` to `file` atomically. Throws UserError naming the file.
+/// Writes `content` to `file` atomically (io::WriteFileAtomically: a reader sees the old file
+/// or the new one, never a part). Throws UserError naming the file and the fix.
 void WriteFileAtomic(const std::filesystem::path& file, const std::string& content);
 
 /// 4x4 matrix as a JSON-style nested array string (full double precision).

@@ -5,6 +5,7 @@
 #include <memory>
 #include <sstream>
 
+#include "base/axis_name.h"
 #include "base/output_files.h"
 #include "base/timing.h"
 #include "base/user_error.h"
@@ -37,19 +38,8 @@ struct CollideArgs {
 
 // "x", "y", "z" with an optional sign ("-z").
 Eigen::Vector3d ParseAxis(const std::string& text) {
-  const bool negative = !text.empty() && text[0] == '-';
-  const std::string name = negative || (!text.empty() && text[0] == '+') ? text.substr(1) : text;
-  Eigen::Vector3d axis;
-  if (name == "x") {
-    axis = Eigen::Vector3d::UnitX();
-  } else if (name == "y") {
-    axis = Eigen::Vector3d::UnitY();
-  } else if (name == "z") {
-    axis = Eigen::Vector3d::UnitZ();
-  } else {
-    throw UserError("--axis: '" + text + "' is not an axis (use x, y, z, -x, -y or -z)");
-  }
-  return negative ? Eigen::Vector3d(-axis) : axis;
+  if (const std::optional<Eigen::Vector3d> axis = AxisFromName(text)) return *axis;
+  throw UserError("--axis: '" + text + "' is not an axis (use x, y, z, -x, -y or -z)");
 }
 
 std::string FormatMm(double mm) {

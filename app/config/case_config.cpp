@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/axis_name.h"
 #include "base/user_error.h"
 #include "config/case_config_toml_internal.h"
 #include "config/clinical_targets_internal.h"
@@ -88,15 +89,13 @@ std::vector<std::string> AllDottedKeys() {
 
 std::optional<Eigen::Vector3d> ParseUpAxis(const Table& t, const std::string& text) {
   if (text == "auto") return std::nullopt;
-  const bool neg = !text.empty() && text[0] == '-';
-  const std::string name = (neg || (!text.empty() && text[0] == '+')) ? text.substr(1) : text;
-  if (name != "x" && name != "y" && name != "z") {
+  const std::optional<Eigen::Vector3d> axis = AxisFromName(text);
+  if (!axis) {
     t.Fail("up_axis",
            "'" + text +
                "' is not an axis; use \"auto\", \"+x\", \"-x\", \"+y\", \"-y\", \"+z\" or \"-z\"");
   }
-  Eigen::Vector3d a = Eigen::Vector3d::Unit(name[0] - 'x');
-  return neg ? Eigen::Vector3d(-a) : a;
+  return axis;
 }
 
 void ReadCase(const Table& t, CaseConfig* c) {
