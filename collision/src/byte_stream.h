@@ -71,6 +71,7 @@ class ByteReader {
     const auto count = Value<std::uint64_t>();
     if (count > (bytes_.size() - at_) / sizeof(T)) Fail("an array is longer than the section");
     values->resize(static_cast<std::size_t>(count));
+    if (values->empty()) return;  // data() may be null: no memcpy of nothing from it
     std::memcpy(static_cast<void*>(values->data()), bytes_.data() + at_,
                 values->size() * sizeof(T));
     at_ += values->size() * sizeof(T);
