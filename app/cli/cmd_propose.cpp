@@ -24,8 +24,7 @@ struct ProposeArgs {
 };
 
 void RunPropose(const ProposeArgs& args) {
-  CaseConfig config =
-      WithCacheArgs(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.cache);
+  CaseConfig config = LoadCaseConfigWithOptions(args.config, args.landmarks, args.cache);
   if (args.global) config.solver.scope = "global";
   ProposeAndReport(config, args.out, args.memory_budget_mb);
 }

@@ -63,11 +63,6 @@ struct RefineArgs {
   CacheArgs cache;
 };
 
-// The config `file` with the command line's --landmarks and cache options applied.
-CaseConfig LoadRefineConfig(const std::filesystem::path& file, const RefineArgs& args) {
-  return WithCacheArgs(WithLandmarksOption(LoadCaseConfig(file), args.landmarks), args.cache);
-}
-
 json Metrics(const planner::PoseEvaluation& e) {
   return {{"contact_area_mm2", e.contact_area_mm2},
           {"contact_samples", e.contact_samples},
@@ -351,7 +346,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
     seen = now;
     ++done;
     try {
-      const CaseConfig updated = LoadRefineConfig(file, args);
+      const CaseConfig updated = LoadCaseConfigWithOptions(file, args.landmarks, args.cache);
       if (session->Reusable(updated)) {
         session->UpdateSettings(updated);
       } else {
@@ -368,7 +363,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
 }
 
 void RunRefine(const RefineArgs& args) {
-  const CaseConfig config = LoadRefineConfig(args.config, args);
+  const CaseConfig config = LoadCaseConfigWithOptions(args.config, args.landmarks, args.cache);
   PlanRequestFromConfig(config, Eigen::Isometry3d::Identity(),
                         Eigen::Vector3d::Zero());  // settings first
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);

@@ -32,8 +32,7 @@ struct ReportArgs {
 
 void RunReport(const ReportArgs& args) {
   const double start = NowSeconds();
-  const CaseConfig config =
-      WithCacheArgs(WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks), args.cache);
+  const CaseConfig config = LoadCaseConfigWithOptions(args.config, args.landmarks, args.cache);
   // (A flag and a matrix rather than std::optional: GCC 12 warns falsely about the
   // optional's aligned Eigen payload being used uninitialized.)
   const bool pose_file = !args.pose.empty();

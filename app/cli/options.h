@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli/cache_options.h"
 #include "config/case_config.h"
 
 namespace occlude::app {
@@ -42,6 +43,13 @@ inline void AddLandmarksOption(CLI::App* cmd, std::string* file) {
 inline CaseConfig WithLandmarksOption(CaseConfig config, const std::string& file) {
   if (!file.empty()) config.landmarks_file = std::filesystem::absolute(file).lexically_normal();
   return config;
+}
+
+/// The config `file` with the command line's --landmarks and cache options applied (the
+/// commands that build oracles: propose, refine, report).
+inline CaseConfig LoadCaseConfigWithOptions(const std::filesystem::path& file,
+                                            const std::string& landmarks, const CacheArgs& cache) {
+  return WithCacheArgs(WithLandmarksOption(LoadCaseConfig(file), landmarks), cache);
 }
 
 /// Adds `--memory-budget-mb MB` (a positive number; 0 = not given) to `cmd`.
