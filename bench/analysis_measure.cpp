@@ -1,4 +1,4 @@
-// The arch analysis measured against the real cases (issue 19): detection on c1-c4 (both jaws)
+// The arch analysis measured against the real cases: detection on c1-c4 (both jaws)
 // against their hand-placed landmarks (per landmark type: median and 95th-percentile distance,
 // share of the given landmarks found), the relationships from detected landmarks against those
 // from the given ones at the registered bite and against clinical.md's table, the orientation on
@@ -24,6 +24,7 @@
 #include "analysis/arch_analysis.h"
 #include "analysis/relationships.h"
 #include "data_dir.h"
+#include "occlude/angles.h"
 #include "occlude/clock.h"
 #include "occlude/io/landmark_file.h"
 #include "occlude/io/mesh_io.h"
@@ -215,7 +216,7 @@ void PrintSyntheticFrame(const analysis::ArchAnalysis& a) {
   const Eigen::Vector3d up = a.jaw == io::Jaw::kLower ? Eigen::Vector3d::UnitY()
                                                       : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
   const auto deg = [](const Eigen::Vector3d& a_, const Eigen::Vector3d& b) {
-    return std::acos(std::clamp(a_.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+    return DegreesFromRadians(std::acos(std::clamp(a_.dot(b), -1.0, 1.0)));
   };
   std::printf("| %s | %zu | %zu | %.2f | %.2f | %.2f |\n", io::ToString(a.jaw), a.teeth.size(),
               a.landmarks.size(), deg(a.frame.occlusal_J, up),

@@ -1,4 +1,4 @@
-// Measures the global search (issue 20) on the synthetic pair or a case in
+// Measures the global search on the synthetic pair or a case in
 // registered occlusion: the seat of the reference (the local search from the
 // reference pose), then from seeded starts of each kind the global search and
 // whether its proposals find that seat. A start is the upper mesh as a file
@@ -31,6 +31,7 @@
 #include <sstream>
 #include <string>
 
+#include "occlude/angles.h"
 #include "occlude/io/dental.h"
 #include "occlude/io/landmark_file.h"
 #include "occlude/io/mesh_io.h"
@@ -85,26 +86,27 @@ std::vector<planner::ToothPoint> LandmarkTeeth(const std::vector<io::Landmark>& 
   return teeth;
 }
 
+// The part files Tooth_<first..last>.stl of a case's teeth/ folder, loaded as one jaw with tooth
+// numbers (the session's part loader).
 io::TriangleMesh TeethFiles(const std::filesystem::path& folder, int first, int last) {
   std::vector<std::filesystem::path> files;
   for (int n = first; n <= last; ++n) {
     const auto f = folder / ("Tooth_" + std::to_string(n) + ".stl");
     if (std::filesystem::exists(f)) files.push_back(f);
   }
-  return io::LoadJawParts(files);
+  if (files.empty()) return {};
+  return *app::LoadJaw(files, /*parts=*/true);
 }
 
 Case LoadCase(const std::string& which) {
   Case c;
   if (which == "synthetic") {
-    io::SyntheticJawOptions o;
-    o.triangles_per_jaw = 20000;
-    const io::SyntheticJawPair pair = io::MakeSyntheticJawPair(o);
-    c.lower = std::make_shared<io::TriangleMesh>(pair.lower_L);
-    c.upper = std::make_shared<io::TriangleMesh>(pair.upper_U);
-    c.X_true = pair.X_LU;
-    c.lower_arch.teeth_J = pair.lower_L;
-    c.upper_arch.teeth_J = pair.upper_U;
+    const app::JawPair pair = app::SyntheticJawPair(20000, /*seed=*/1);
+    c.lower = pair.lower_L;
+    c.upper = pair.upper_U;
+    c.X_true = pair.X_LU_ref;
+    c.lower_arch.teeth_J = *pair.lower_L;
+    c.upper_arch.teeth_J = *pair.upper_U;
     c.upper_arch.occlusal_hint_J = -Eigen::Vector3d::UnitY();  // the design: U parallel to L
     return c;
   }
@@ -157,10 +159,10 @@ Eigen::Isometry3d StartFrame(const Reference& ref, const std::string& kind, std:
 // the axes turned by up to 3 deg about a random axis.
 planner::JawArch Noisy(planner::JawArch a, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double angle = 2.0 * M_PI * unit(rng), r = 2.0 * unit(rng);
+  const double angle = 2.0 * kPi * unit(rng), r = 2.0 * unit(rng);
   a.origin_J += r * (std::cos(angle) * a.lateral_J + std::sin(angle) * a.anterior_J);
   const Eigen::Matrix3d R =
-      Eigen::AngleAxisd(3.0 * unit(rng) * M_PI / 180.0, planner::RandomUnitVector(rng))
+      Eigen::AngleAxisd(RadiansFromDegrees(3.0 * unit(rng)), planner::RandomUnitVector(rng))
           .toRotationMatrix();
   a.occlusal_J = R * a.occlusal_J;
   a.anterior_J = R * a.anterior_J;

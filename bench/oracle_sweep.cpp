@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "data_dir.h"
+#include "occlude/angles.h"
 #include "occlude/clock.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
@@ -118,7 +119,7 @@ std::vector<Isometry3d> Poses(double offset, const Vector3d& axis, const Vector3
     Isometry3d X = Isometry3d::Identity();
     if (i > 0) {
       const Vector3d w(u(*rng), u(*rng), u(*rng));
-      const double angle = 0.1 * M_PI / 180.0 * u(*rng);
+      const double angle = RadiansFromDegrees(0.1) * u(*rng);
       X = Eigen::Translation3d(pivot) * Eigen::AngleAxisd(angle, w.normalized()) *
           Eigen::Translation3d(-pivot);
       X.translation() += 0.02 * Vector3d(u(*rng), u(*rng), u(*rng));

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "geometry_util.h"
+#include "occlude/angles.h"
 
 namespace occlude::analysis {
 namespace {
@@ -16,7 +17,6 @@ namespace {
 constexpr int kBins = 360;
 constexpr int kMinCellsPerBin = 4;
 constexpr int kMaxGapBins = 6;  // gaps of up to this many empty bins are bridged
-constexpr double kPi = 3.14159265358979323846;
 
 constexpr int kDegree = 8;        // of the radius polynomial: smooth below a tooth's width
 constexpr double kHuberMm = 1.0;  // radius residuals beyond this count less

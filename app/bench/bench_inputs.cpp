@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "base/user_error.h"
+#include "occlude/angles.h"
 #include "occlude/collision/oracle.h"
 #include "session/jaw_pair.h"
 
@@ -32,7 +33,7 @@ Eigen::Vector3d BenchAxis(const std::string& text, const io::TriangleMesh& lower
         collision::EstimateArchFrame(lower_L, upper_L).occlusal_L.normalized();
     Eigen::Index i = 0;
     a.cwiseAbs().maxCoeff(&i);
-    if (std::abs(a[i]) > std::cos(30.0 * 3.14159265358979 / 180.0)) {
+    if (std::abs(a[i]) > std::cos(RadiansFromDegrees(30.0))) {
       return Eigen::Vector3d::Unit(i) * (a[i] > 0 ? 1.0 : -1.0);
     }
     return a;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ostream>
 
+#include "occlude/angles.h"
 #include "occlude/collision/octree.h"
 #include "occlude/collision/sphere_tree.h"
 #include "occlude/collision/voxel_grid.h"
@@ -170,7 +171,7 @@ PaperBuildRow MeasureBuild(const std::shared_ptr<const io::TriangleMesh>& mesh, 
     level.nodes = ls.nodes;
     level.simple_mm3 = ls.simple_volume_mm3;
     level.optimized_mm3 = ls.optimized_volume_mm3;
-    level.unit_mm3 = std::sqrt(3.0) / 2.0 * EIGEN_PI * std::pow(std::ldexp(s, ls.level), 3.0);
+    level.unit_mm3 = std::sqrt(3.0) / 2.0 * kPi * std::pow(std::ldexp(s, ls.level), 3.0);
     levels->push_back(level);
   }
   return row;

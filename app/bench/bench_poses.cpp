@@ -4,6 +4,7 @@
 #include <random>
 
 #include "bench/bench_poses_internal.h"
+#include "occlude/angles.h"
 #include "occlude/collision/arch_frame.h"
 
 namespace occlude::app {
@@ -43,8 +44,8 @@ std::vector<std::vector<Eigen::Isometry3d>> SweepPoses(const BenchCase& bc,
       if (r > 0) {
         const Eigen::Vector3d axis =
             Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-        const double angle = unit(rng) * jitter_deg * EIGEN_PI / 180.0;
-        const double spin = unit(rng) * 2.0 * EIGEN_PI;
+        const double angle = RadiansFromDegrees(unit(rng) * jitter_deg);
+        const double spin = unit(rng) * 2.0 * kPi;
         const Eigen::Vector3d t =
             Eigen::AngleAxisd(spin, bc.axis_L) * across * (unit(rng) * jitter_mm);
         jitter = Eigen::Translation3d(t) * RotationAbout(pivot_L, Eigen::AngleAxisd(angle, axis));
@@ -72,7 +73,7 @@ HapticTrajectory::HapticTrajectory(
   amp_pro_ = 0.1 + 0.2 * u(rng);
   f_lat_ = 0.5 + u(rng);
   f_pro_ = 0.5 + u(rng);
-  phase_ = 2.0 * EIGEN_PI * u(rng);
+  phase_ = 2.0 * kPi * u(rng);
   wobble_deg_ = 0.3 * u(rng);
   // Contact height on a keyframe grid over the sliding phase (t >= seconds / 4).
   const int n = std::max(2, keyframes);
@@ -85,10 +86,10 @@ HapticTrajectory::HapticTrajectory(
 
 Eigen::Isometry3d HapticTrajectory::Slide(double t) const {
   const double ts = std::max(0.0, t - 0.25 * seconds_);
-  const double lat = amp_lat_ * std::sin(2.0 * EIGEN_PI * f_lat_ * ts);
+  const double lat = amp_lat_ * std::sin(2.0 * kPi * f_lat_ * ts);
   const double pro =
-      amp_pro_ * std::sin(2.0 * EIGEN_PI * f_pro_ * ts + phase_) - amp_pro_ * std::sin(phase_);
-  const double wobble = wobble_deg_ * EIGEN_PI / 180.0 * std::sin(2.0 * EIGEN_PI * 0.7 * ts);
+      amp_pro_ * std::sin(2.0 * kPi * f_pro_ * ts + phase_) - amp_pro_ * std::sin(phase_);
+  const double wobble = wobble_deg_ * kPi / 180.0 * std::sin(2.0 * kPi * 0.7 * ts);
   return Eigen::Translation3d(lat * lateral_L_ + pro * anterior_L_) *
          RotationAbout(pivot_L_, Eigen::AngleAxisd(wobble, anterior_L_)) * case_.X_LU_ref;
 }

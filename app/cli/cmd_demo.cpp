@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
+#include "occlude/angles.h"
 #include "occlude/collision/collide.h"
 #include "occlude/planner/pose.h"
 #include "report/proposal_report.h"
@@ -142,8 +143,7 @@ void RunDemo(const DemoArgs& args) {
   double worst_mm = 0.0;
   for (const Eigen::Vector3d& v : jaws.upper_U.vertices)
     worst_mm = std::max(worst_mm, (X_LU * v - v).norm());
-  const double angle_deg =
-      Eigen::AngleAxisd(X_LU.linear()).angle() * 180.0 / 3.14159265358979323846;
+  const double angle_deg = DegreesFromRadians(Eigen::AngleAxisd(X_LU.linear()).angle());
   std::cout << "demo: proposal 1 lies within " << std::setprecision(3) << worst_mm
             << " mm (largest vertex displacement) and " << angle_deg
             << " deg of the designed bite; report in " << (out / "report.html").string()

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "occlude/angles.h"
 #include "occlude/collision/distance_bound.h"
 #include "occlude/collision/voxel_grid.h"
 #include "voxelize_detail.h"
@@ -17,7 +18,6 @@ namespace occlude::collision {
 namespace {
 
 constexpr double kSqrt3 = 1.7320508075688772;
-constexpr double kPi = 3.14159265358979323846;
 /// Levels of the selection's distance bound: voxels up to cells of 16 voxels, so that with
 /// 0.5 mm voxels the bound certifies up to 60 mm (7.5 cells of 8 mm).
 const std::vector<int> kBoundLevels = {0, 1, 2, 3, 4};

@@ -6,13 +6,14 @@
 #include <cmath>
 #include <limits>
 
+#include "occlude/angles.h"
 #include "occlude/collision/sphere_table.h"
 #include "seconds_since.h"
 
 namespace occlude::collision {
 namespace {
 
-double SphereVolume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
+double SphereVolume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
 
 // A node's normal counts as coherent when the summed area-weighted normals keep
 // at least this fraction of the summed areas (otherwise the surface folds back

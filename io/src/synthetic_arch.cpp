@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "occlude/angles.h"
 #include "synthetic_jaws_internal.h"
 
 namespace occlude::io::synthetic {
@@ -41,7 +42,7 @@ Eigen::Vector2d TangentIntegral(const ArchCurve& arch, double a, double b) {
 
 double ArchAngle(const ArchCurve& arch, double s) {
   const double u = std::min(std::abs(s) / arch.bend_length, 1.0);
-  return std::copysign(0.5 * M_PI * TurnShare(arch, u), s);
+  return std::copysign(0.5 * kPi * TurnShare(arch, u), s);
 }
 
 Eigen::Vector2d ArchPoint(const ArchCurve& arch, double s) {
@@ -69,7 +70,7 @@ Eigen::Vector2d ArchNormal(const ArchCurve& arch, double s) {
 
 double ArchCurvature(const ArchCurve& arch, double s) {
   const double u = std::abs(s) / arch.bend_length;
-  return u >= 1.0 ? 0.0 : 0.5 * M_PI * TurnRate(arch, u) / arch.bend_length;
+  return u >= 1.0 ? 0.0 : 0.5 * kPi * TurnRate(arch, u) / arch.bend_length;
 }
 
 double MaxArchCurvature(const ArchCurve& arch) {

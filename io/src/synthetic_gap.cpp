@@ -26,6 +26,7 @@
 #include <iterator>
 #include <utility>
 
+#include "occlude/angles.h"
 #include "synthetic_jaws_internal.h"
 
 namespace occlude::io::synthetic {
@@ -36,8 +37,10 @@ constexpr double kGapRamp = 1.5;              // mm, C rises over this distance 
 constexpr double kFarGap = 0.5;               // mm, C away from contacts
 constexpr double kContactSearchRadius = 1.0;  // mm around a flank point to look for a contact
 constexpr double kDesignReach = 0.3;  // mm: the upper design may sit this far above a contact
-constexpr double kMinFlankSlope = 12.0 * M_PI / 180.0;  // a contact incline locks at first order
-constexpr double kMaxFlankSlope = 36.0 * M_PI / 180.0;  // and still opens kKeptApart when pulled
+constexpr double kMinFlankSlope =
+    RadiansFromDegrees(12.0);  // a contact incline locks at first order
+constexpr double kMaxFlankSlope =
+    RadiansFromDegrees(36.0);  // and still opens kKeptApart when pulled
 
 Eigen::Vector3d LowerPoint(const OcclusalGrid& grid, const OcclusalFields& fields, int v) {
   const Eigen::Vector2d& xz = grid.xz[static_cast<std::size_t>(v)];

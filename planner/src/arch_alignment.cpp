@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "occlude/angles.h"
 #include "occlude/planner/pose.h"
 
 namespace occlude::planner {
@@ -22,7 +23,7 @@ namespace {
 constexpr double kAxisTolerance = 0.05;  // unit length and orthogonality of an arch's axes
 constexpr std::size_t kMinCurvePoints = 4;
 constexpr int kFitIterations = 12;
-constexpr double kRadPerDeg = M_PI / 180.0;
+constexpr double kRadPerDeg = RadiansFromDegrees(1.0);
 
 // The arch's axes made exactly orthonormal: occlusal kept, anterior projected into its plane,
 // lateral = side * occlusal x anterior with side the sign the given lateral has.

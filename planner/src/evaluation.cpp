@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "occlude/angles.h"
 #include "occlude/collision/arch_frame.h"
 
 namespace occlude::planner {
@@ -172,7 +173,7 @@ PoseError ComparePoses(const Eigen::Isometry3d& X_LU_a, const Eigen::Isometry3d&
   for (const auto& p : points_U)
     e.translation_mm = std::max(e.translation_mm, (X_LU_a * p - X_LU_b * p).norm());
   const Eigen::AngleAxisd aa(Eigen::Matrix3d(X_LU_a.linear() * X_LU_b.linear().transpose()));
-  e.rotation_deg = std::abs(aa.angle()) * 180.0 / M_PI;
+  e.rotation_deg = DegreesFromRadians(std::abs(aa.angle()));
   return e;
 }
 

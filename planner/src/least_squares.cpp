@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "least_squares_internal.h"
+#include "occlude/angles.h"
 
 namespace occlude::planner {
 namespace detail {
 namespace {
-constexpr double kRadPerDeg = M_PI / 180.0;
+constexpr double kRadPerDeg = RadiansFromDegrees(1.0);
 }  // namespace
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
@@ -153,7 +154,7 @@ void SurfaceResiduals::Evaluate(const PoseParameters& params, Eigen::VectorXd* r
   if (jacobian) jacobian->resize(2 * n, 6);
   // Per degree instead of per radian for the rotation columns.
   Row6d unit = Row6d::Ones();
-  unit.tail<3>() *= M_PI / 180.0;
+  unit.tail<3>() *= RadiansFromDegrees(1.0);
   for (Eigen::Index i = 0; i < n; ++i) {
     Row6d jh, ja;
     impl_->Residuals(static_cast<std::size_t>(i), z, &(*residuals)[2 * i], &(*residuals)[2 * i + 1],

@@ -3,9 +3,11 @@
 
 #include <cmath>
 
+#include "occlude/angles.h"
+
 namespace occlude::planner {
 namespace {
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / kPi;
 }
 
 Eigen::Matrix3d RotationFromVectorDeg(const Eigen::Vector3d& rotation_deg) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "occlude/angles.h"
 #include "occlude/planner/evaluation.h"
 
 namespace occlude::planner {
@@ -85,7 +86,7 @@ std::vector<PenetrationPatch> PenetrationPatches(const std::vector<PenetratingSa
   }
   for (PenetrationPatch& patch : patches) {
     if (patch.area_mm2 > 0.0) patch.centre_L /= patch.area_mm2;
-    const double disc_radius = std::sqrt(patch.area_mm2 / M_PI);
+    const double disc_radius = std::sqrt(patch.area_mm2 / kPi);
     patch.spike = patch.area_mm2 <= max_spike_area_mm2 && patch.depth_mm > disc_radius;
   }
   return patches;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "occlude/angles.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "test_common.h"
 
@@ -17,7 +18,7 @@ namespace occlude::collision {
 namespace {
 
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+  return DegreesFromRadians(std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)));
 }
 
 // The synthetic occlusal surfaces carry the curve-of-Spee-free design: the interface plane
@@ -34,7 +35,7 @@ TEST(ArchFrame, RecoversRotatedOcclusalAndAnteriorAxes) {
   for (const Eigen::Vector3d& axis_angle_deg :
        {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(25, 0, 0), Eigen::Vector3d(0, 0, -30),
         Eigen::Vector3d(20, 40, 10), Eigen::Vector3d(90, 0, 0)}) {
-    const double angle = axis_angle_deg.norm() * M_PI / 180.0;
+    const double angle = RadiansFromDegrees(axis_angle_deg.norm());
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     if (angle > 0)
       X.linear() = Eigen::AngleAxisd(angle, axis_angle_deg.normalized()).toRotationMatrix();

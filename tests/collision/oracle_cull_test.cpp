@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 
+#include "occlude/angles.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/mesh_io.h"
 #include "test_common.h"
@@ -99,7 +100,7 @@ std::vector<Isometry3d> Sweep(const Isometry3d& X_ref, const Vector3d& axis, con
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Isometry3d> poses;
   for (const double offset : offsets) {
-    const double angle = 0.3 * M_PI / 180.0 * u(rng);
+    const double angle = RadiansFromDegrees(0.3) * u(rng);
     const Isometry3d jitter =
         Eigen::Translation3d(pivot + 0.05 * Vector3d(u(rng), 0.0, u(rng))) *
         Eigen::AngleAxisd(angle, Vector3d(u(rng), u(rng), u(rng)).normalized()) *

@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "occlude/angles.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "test_common.h"
@@ -22,7 +23,6 @@ namespace {
 
 constexpr AccuracyLevel kLevels[] = {AccuracyLevel::kVoxel, AccuracyLevel::kSubVoxel,
                                      AccuracyLevel::kExact};
-constexpr double kPi = 3.14159265358979323846;
 // Random poses per test (fewer in the sanitizer lane, where every query is ~30x slower).
 #ifdef OCCLUDE_SANITIZED
 constexpr int kPoses = 4;

@@ -18,6 +18,7 @@
 #include <random>
 #include <set>
 
+#include "occlude/angles.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "test_common.h"
@@ -92,7 +93,7 @@ Isometry3d PoseWithin(const RegionOfInterestRequest& r, std::mt19937* rng) {
     t[i] = std::uniform_real_distribution<double>(r.bound_min[i], r.bound_max[i])(*rng);
     w[i] = std::uniform_real_distribution<double>(r.bound_min[i + 3], r.bound_max[i + 3])(*rng);
   }
-  const double angle = w.norm() * M_PI / 180.0;
+  const double angle = RadiansFromDegrees(w.norm());
   const Eigen::Matrix3d R = angle > 0 ? Eigen::AngleAxisd(angle, w.normalized()).toRotationMatrix()
                                       : Eigen::Matrix3d::Identity();
   Isometry3d M = Isometry3d::Identity();

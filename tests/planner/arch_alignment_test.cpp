@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "occlude/angles.h"
 #include "planner_fixture.h"
 
 namespace occlude::planner {
@@ -96,8 +97,8 @@ double LargestMove(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const
 }
 
 double AngleDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(Eigen::Matrix3d(a.linear() * b.linear().transpose())).angle() * 180.0 /
-         M_PI;
+  return DegreesFromRadians(
+      Eigen::AngleAxisd(Eigen::Matrix3d(a.linear() * b.linear().transpose())).angle());
 }
 
 TEST(AlignArchesTest, RecoversTheKnownRelativePose) {
@@ -117,7 +118,7 @@ TEST(AlignArchesTest, CurveFitCorrectsAYawErrorOfTheFrames) {
   constexpr double kYawErrorDeg = 4.0, kAfterFitDeg = 0.5, kAfterFitMm = 0.5;
   const Eigen::Isometry3d X_LU = TargetPose();
   JawArch upper_L = UpperArchInL();
-  const Eigen::AngleAxisd yaw(kYawErrorDeg * M_PI / 180.0, upper_L.occlusal_J);
+  const Eigen::AngleAxisd yaw(RadiansFromDegrees(kYawErrorDeg), upper_L.occlusal_J);
   upper_L.anterior_J = yaw * upper_L.anterior_J;
   upper_L.lateral_J = yaw * upper_L.lateral_J;
   const JawArch upper_U = Moved(upper_L, X_LU.inverse());
@@ -218,7 +219,7 @@ TEST(JawArchFromTeethTest, SyntheticPairMatchesItsDesign) {
   const JawArch upper = JawArchFromTeeth(ToothTops(c.pair.upper_U, -Eigen::Vector3d::UnitY()),
                                          -Eigen::Vector3d::UnitY());
   auto deg = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+    return DegreesFromRadians(std::acos(std::clamp(a.dot(b), -1.0, 1.0)));
   };
   EXPECT_LE(deg(lower.occlusal_J, Eigen::Vector3d::UnitY()), kAxisDeg);
   EXPECT_LE(deg(lower.anterior_J, Eigen::Vector3d::UnitZ()), kAxisDeg);

@@ -5,6 +5,8 @@
 
 #include <random>
 
+#include "occlude/angles.h"
+
 namespace occlude::planner {
 namespace {
 
@@ -16,7 +18,7 @@ TEST(PoseTest, RotationAboutPivotKeepsPivotFixed) {
   EXPECT_LT((X * pivot - pivot).norm(), 1e-12);
   // A point 10 mm from the pivot along x swings on a 10 mm circle by 30 degrees.
   const Eigen::Vector3d q = pivot + Eigen::Vector3d(10, 0, 0);
-  EXPECT_NEAR((X * q - q).norm(), 2 * 10 * std::sin(15.0 * M_PI / 180.0), 1e-12);
+  EXPECT_NEAR((X * q - q).norm(), 2 * 10 * std::sin(RadiansFromDegrees(15.0)), 1e-12);
 }
 
 TEST(PoseTest, ComposeDecomposeRoundTrip) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "occlude/angles.h"
 #include "occlude/planner/evaluation.h"
 
 namespace occlude::planner {
@@ -36,7 +37,7 @@ TEST(SpikePatches, SphericalCapIsNotASpike) {
     const auto cap = Cap(2.0, h, 0.1, V::Zero());
     const auto patches = PenetrationPatches(cap, 0.25, 100.0);
     ASSERT_EQ(patches.size(), 1u) << h;
-    EXPECT_NEAR(patches[0].area_mm2, 2.0 * M_PI * 2.0 * h, 0.15 * 2.0 * M_PI * 2.0 * h) << h;
+    EXPECT_NEAR(patches[0].area_mm2, 2.0 * kPi * 2.0 * h, 0.15 * 2.0 * kPi * 2.0 * h) << h;
     EXPECT_NEAR(patches[0].depth_mm, h, 0.02) << h;
     EXPECT_FALSE(patches[0].spike) << h;
   }

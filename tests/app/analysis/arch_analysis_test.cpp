@@ -17,6 +17,7 @@
 
 #include "../../common/test_common.h"
 #include "analysis/relationships.h"
+#include "occlude/angles.h"
 #include "occlude/io/landmark_file.h"
 #include "occlude/io/mesh_io.h"
 #include "occlude/io/synthetic_jaws.h"
@@ -34,7 +35,7 @@ constexpr double kMovedFrameDeg = 2.0;
 constexpr double kMovedIncisalMm = 1.0;
 // On a real scan this share of the landmarks may stray farther (c4 lower: 8-11 of 90 measured).
 constexpr double kCaseStrayShare = 0.15;  // the middle of a ridge sloping by a few tenths
-// Targets on the synthetic pair (issue 19), with the medians measured by
+// Targets on the synthetic pair (docs/results/analysis/README.md), with the medians measured by
 // occlude_analysis_measure (docs/results/analysis/README.md).
 constexpr double kSyntheticIncisalMedianMm = 0.5;
 constexpr double kSyntheticCuspMedianMm = 1.0;
@@ -51,7 +52,7 @@ const io::SyntheticJawPair& Pair() {
 }
 
 double Deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+  return DegreesFromRadians(std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)));
 }
 
 std::vector<int> Fdis(const ArchAnalysis& a) {
@@ -208,7 +209,7 @@ void ExpectDetectionMovesWithMesh(const io::TriangleMesh& mesh, Jaw jaw, bool pe
   const auto random_motion = [&] {
     const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     return Eigen::Isometry3d(Eigen::Translation3d(30 * u(rng), 30 * u(rng), 30 * u(rng)) *
-                             Eigen::AngleAxisd(M_PI * u(rng), axis));
+                             Eigen::AngleAxisd(kPi * u(rng), axis));
   };
   const Eigen::Isometry3d X_AJ = random_motion();
   const ArchAnalysis a0 = AnalyzeArch(mesh.Transformed(X_AJ), jaw);
@@ -286,7 +287,7 @@ INSTANTIATE_TEST_SUITE_P(BothJaws, SyntheticJaw, ::testing::Values(Jaw::kLower, 
                          });
 
 // The synthetic bite's relationships from detected landmarks: overjet, overbite and midline
-// within 0.5 mm of the design, molars within 1.0 mm and the same class (issue 19's targets).
+// within 0.5 mm of the design, molars within 1.0 mm and the same class (the analysis targets).
 TEST(ArchAnalysis, SyntheticRelationshipsFromDetectedLandmarks) {
   const io::SyntheticJawPair& pair = Pair();
   const ArchAnalysis lower = AnalyzeArch(pair.lower_L, Jaw::kLower);

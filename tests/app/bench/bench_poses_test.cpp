@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/bench_poses_internal.h"
+#include "occlude/angles.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "test_common.h"
 
@@ -31,7 +32,7 @@ TEST(BenchPosesTest, SweepPosesAreSeededAndJitteredWithinBounds) {
     for (std::size_t r = 0; r < 20; ++r) {
       EXPECT_TRUE(a[k][r].isApprox(b[k][r], 0.0));
       const Eigen::Isometry3d delta = a[k][r] * exact.inverse();  // jitter, in L
-      const double angle_deg = Eigen::AngleAxisd(delta.linear()).angle() * 180.0 / 3.14159265358979;
+      const double angle_deg = DegreesFromRadians(Eigen::AngleAxisd(delta.linear()).angle());
       EXPECT_LE(angle_deg, 0.2 + 1e-9);
       // The centroid moves across the axis by the translation jitter only.
       const Eigen::Vector3d moved =

@@ -1,6 +1,7 @@
 // Synthetic viewer inputs (see viewer_fixture.h).
 #include "viewer_fixture.h"
 
+#include "occlude/angles.h"
 #include "occlude/collision/oracle.h"
 #include "occlude/collision/signed_distance.h"
 #include "occlude/io/synthetic_jaws.h"
@@ -38,7 +39,7 @@ std::unique_ptr<ViewerFixture> MakeSyntheticViewer(int proposals, std::size_t tr
   in.title = "Synthetic jaws";
   const Eigen::Vector3d occlusal = pair.occlusal_axis_L;
   Eigen::Isometry3d opened = Eigen::Translation3d(0.3 * occlusal) *
-                             Eigen::AngleAxisd(3.0 * M_PI / 180.0, occlusal) * pair.X_LU;
+                             Eigen::AngleAxisd(RadiansFromDegrees(3.0), occlusal) * pair.X_LU;
   Eigen::Isometry3d pushed = Eigen::Translation3d(-0.15 * occlusal) * pair.X_LU;
   const Eigen::Isometry3d poses[] = {pair.X_LU, opened, pushed};
   const char* numbers[] = {"{\"contact area (mm\u00b2)\": 12.5, \"status\": \"converged\"}",

@@ -30,6 +30,7 @@
 #include "base/timing.h"
 #include "config/case_config.h"
 #include "headless_browser.h"
+#include "occlude/angles.h"
 #include "occlude/io/display_decimation.h"
 #include "report/report_analysis.h"
 #include "serve/live_server.h"
@@ -105,7 +106,7 @@ std::vector<Eigen::Isometry3d> Poses(CaseSession& session, int n) {
   const Eigen::Vector3d pivot = session.pivot_L();
   const Eigen::Isometry3d opened = Eigen::Translation3d(0.1 * axis) * start;
   const Eigen::Isometry3d turned = Eigen::Translation3d(pivot) *
-                                   Eigen::AngleAxisd(M_PI / 180.0, axis) *
+                                   Eigen::AngleAxisd(RadiansFromDegrees(1.0), axis) *
                                    Eigen::Translation3d(-pivot) * start;
   std::vector<Eigen::Isometry3d> all = {start, opened, turned};
   all.resize(static_cast<std::size_t>(n));
