@@ -1,7 +1,7 @@
-// HTTP request heads and the server's responses (see http_head.h).
-#include "serve/http_head.h"
-
+// HTTP request heads and the server's responses (see http_head_internal.h).
 #include <charconv>
+
+#include "serve/http_head_internal.h"
 
 namespace occlude::app::serve_detail {
 namespace {

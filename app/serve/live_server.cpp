@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "serve/http_head.h"
+#include "serve/http_head_internal.h"
 
 namespace occlude::app {
 // Named, not anonymous: LiveServer::Impl holds these (unity builds warn otherwise).

@@ -1,8 +1,8 @@
 // The occlude 3D viewer (viewer_page.h): both jaws at the pose in three.js r111, coloured
 // by the contact map; orbit/zoom/pan; upper jaw solid, transparent or hidden; a click reads
 // the distance and the tooth; standard views; a switcher between proposals. Reads its data
-// from the JSON element #occlude-viewer-data (layout: viewer_data.h). Frames: the lower mesh
-// in L, the upper in U placed by each proposal's X_LU; mm. No network access.
+// from the JSON element #occlude-viewer-data (layout: viewer_data_internal.h). Frames: the
+// lower mesh in L, the upper in U placed by each proposal's X_LU; mm. No network access.
 (function () {
   'use strict';
   var FAR_CODE = 32767;

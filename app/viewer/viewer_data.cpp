@@ -1,12 +1,11 @@
-// The viewer page's data object (see viewer_data.h).
-#include "viewer/viewer_data.h"
-
+// The viewer page's data object (see viewer_data_internal.h).
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "occlude/io/dental.h"
 #include "viewer/html_text.h"
+#include "viewer/viewer_data_internal.h"
 
 namespace occlude::app::viewer_detail {
 namespace {

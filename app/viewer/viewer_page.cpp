@@ -4,7 +4,7 @@
 
 #include "viewer/html_text.h"
 #include "viewer/viewer_assets.h"
-#include "viewer/viewer_data.h"
+#include "viewer/viewer_data_internal.h"
 
 namespace occlude::app {
 namespace {

@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "loopback_client.h"
-#include "serve/http_head.h"
+#include "serve/http_head_internal.h"
 
 namespace occlude::app {
 namespace {

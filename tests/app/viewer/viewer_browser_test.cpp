@@ -12,7 +12,7 @@
 #include "occlude/collision/closest_point.h"
 #include "occlude/io/dental.h"
 #include "test_common.h"
-#include "viewer/viewer_data.h"
+#include "viewer/viewer_data_internal.h"
 #include "viewer_fixture.h"
 
 namespace occlude::app {

@@ -14,7 +14,7 @@
 #include "report/report_colours.h"
 #include "viewer/html_text.h"
 #include "viewer/viewer_assets.h"
-#include "viewer/viewer_data.h"
+#include "viewer/viewer_data_internal.h"
 #include "viewer_fixture.h"
 
 namespace occlude::app {
