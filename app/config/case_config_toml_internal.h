@@ -1,6 +1,7 @@
-// Typed, checked access to one TOML table of a case file (used only by
-// case_config.cpp): every failure is a UserError of the form
-// `<file>:<line>: <table.key>: <what is wrong>` so the user finds the key at once.
+// Typed, checked access to one TOML table of a case file (private to occlude::config: the case
+// config, the plan config and the clinical targets read their tables through it). Every failure
+// is a UserError of the form `<file>:<line>: <table.key>: <what is wrong>`, so the user finds the
+// key at once.
 #pragma once
 
 #include <toml++/toml.h>

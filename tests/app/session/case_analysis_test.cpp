@@ -26,7 +26,7 @@ using io::LandmarkType;
 
 constexpr std::size_t kTriangles = 20000;
 constexpr std::uint32_t kSeed = 1;
-// issue 19's targets for relationships from detected landmarks.
+// The analysis's targets for relationships from detected landmarks (docs/results/analysis).
 constexpr double kIncisorTargetMm = 0.5;
 constexpr double kSideTargetMm = 1.0;
 // The landmark frame is a plane fit through both jaws' occlusal landmarks: a shift of the upper

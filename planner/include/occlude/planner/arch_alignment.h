@@ -91,21 +91,22 @@ Eigen::Isometry3d ApplyShift(const Eigen::Isometry3d& X_LU_from, const ArchShift
 /// region the front 35 % of the curve's depth), for the planner's settle axis and shares.
 collision::ArchFrame FrameOf(const JawArch& lower_L);
 
-/// The occlusal point of one tooth (FDI number, point in the jaw's frame J), for the stand-in
-/// arch analysis below.
+/// The occlusal point of one tooth (FDI number, point in the jaw's frame J), for the arch from
+/// tooth points below.
 struct ToothPoint {
   int fdi = 0;
   Eigen::Vector3d p_J = Eigen::Vector3d::Zero();
 };
 
-/// A stand-in arch analysis (until the app's arch analysis feeds the search), from one jaw's
-/// tooth points: the curve the points right to left (by FDI number); the occlusal normal the
-/// normal of the plane fitted through them, on the side of `occlusal_hint_J` (out of the
-/// crowns); lateral the direction from the most distal tooth of the right side to the most
-/// distal of the left, in that plane; anterior in the plane, perpendicular to lateral, towards
-/// the central incisors; the incisal point the mean of the central incisors' points (else the
-/// most anterior point) projected onto the plane. Throws std::invalid_argument for fewer than
-/// 4 teeth, teeth of both jaws, or no tooth on one side.
+/// A jaw's arch from tooth points alone, without the app's arch analysis (which is what the
+/// global search of a session steps by): for tools and tests that hold only tooth parts or
+/// landmark points (bench/global_measure, the planner's tests). The curve the points right to left
+/// (by FDI number); the occlusal normal the normal of the plane fitted through them, on the side of
+/// `occlusal_hint_J` (out of the crowns); lateral the direction from the most distal tooth of the
+/// right side to the most distal of the left, in that plane; anterior in the plane, perpendicular
+/// to lateral, towards the central incisors; the incisal point the mean of the central incisors'
+/// points (else the most anterior point) projected onto the plane. Throws std::invalid_argument for
+/// fewer than 4 teeth, teeth of both jaws, or no tooth on one side.
 JawArch JawArchFromTeeth(const std::vector<ToothPoint>& teeth,
                          const Eigen::Vector3d& occlusal_hint_J);
 /// Per tooth part of a mesh (parts with a Universal tooth number): the centroid of its vertices

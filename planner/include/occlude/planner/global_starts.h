@@ -1,4 +1,4 @@
-// The start poses the global search is validated from (issue 20), drawn from a caller's seeded
+// The start poses the global search is validated from, drawn from a caller's seeded
 // generator so that `occlude validate --global` and bench/global_measure.cpp draw the same
 // starts: the upper jaw shifted along the arch from its reference (`sagittal`) or turned and
 // moved far away (`apart`). Millimetres in L; the pivot in L at the reference pose.
