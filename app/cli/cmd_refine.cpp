@@ -39,6 +39,7 @@
 #include "report/global_proposal_report.h"
 #include "report/relationships_table.h"
 #include "report/report_analysis.h"
+#include "report/report_viewer.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
 #include "session/case_session.h"
@@ -257,16 +258,17 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
 // The numbers the live page lists beside refinement `save` (0 = the one at launch).
 std::string LiveNumbers(const RefineOutcome& r, int save) {
   const planner::PoseEvaluation& after = r.after().evaluation;
-  const json numbers = {{"save", save},
-                        {"moved t (mm)", Triple(r.moved.translation_mm, 3)},
-                        {"moved r (deg)", Triple(r.moved.rotation_deg, 2)},
-                        {"held", DofList(r.held)},
-                        {"contact before (mm\u00b2)", r.before.contact_area_mm2},
-                        {"contact after (mm\u00b2)", after.contact_area_mm2},
-                        {"max penetration before (mm)", r.before.max_penetration_mm},
-                        {"max penetration after (mm)", after.max_penetration_mm},
-                        {"status", planner::ToString(r.after().status)}};
-  return numbers.dump();
+  const nlohmann::ordered_json numbers = {
+      {"save", save},
+      {"moved t (mm)", Triple(r.moved.translation_mm, 3)},
+      {"moved r (deg)", Triple(r.moved.rotation_deg, 2)},
+      {"held", DofList(r.held)},
+      {"contact before (mm\u00b2)", r.before.contact_area_mm2},
+      {"contact after (mm\u00b2)", after.contact_area_mm2},
+      {"max penetration before (mm)", r.before.max_penetration_mm},
+      {"max penetration after (mm)", after.max_penetration_mm},
+      {"status", planner::ToString(r.after().status)}};
+  return WithRelationships(numbers.dump(), r.analysis.relationships);
 }
 
 // Set by Ctrl-C (SIGINT) while --watch runs; a signal handler reaches only static storage.

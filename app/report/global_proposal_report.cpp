@@ -16,6 +16,7 @@
 #include "config/case_output.h"
 #include "config/plan_config.h"
 #include "report/proposal_report.h"
+#include "report/relationships_json_internal.h"
 #include "report/report_analysis.h"
 #include "report/report_writer.h"
 #include "report/search_document.h"
@@ -33,24 +34,6 @@ json ShiftJson(const planner::ArchShift& s) {
   return {{"lateral_mm", s.lateral_mm},   {"sagittal_mm", s.sagittal_mm},
           {"vertical_mm", s.vertical_mm}, {"yaw_deg", s.yaw_deg},
           {"pitch_deg", s.pitch_deg},     {"roll_deg", s.roll_deg}};
-}
-
-json MeasureJson(const analysis::Measure& m) { return m.mm ? json(*m.mm) : json(nullptr); }
-
-json SideJson(const analysis::SideRelationship& s) {
-  return {{"class", s.occlusion_class ? analysis::ToString(*s.occlusion_class) : nullptr},
-          {"offset_mm", MeasureJson(s.offset)}};
-}
-
-json RelationshipsJson(const analysis::Relationships& r) {
-  return {{"molar_right", SideJson(r.molar[0])},
-          {"molar_left", SideJson(r.molar[1])},
-          {"canine_right", SideJson(r.canine[0])},
-          {"canine_left", SideJson(r.canine[1])},
-          {"overjet_mm", MeasureJson(r.overjet)},
-          {"overbite_mm", MeasureJson(r.overbite)},
-          {"midline_mm", MeasureJson(r.midline_deviation)},
-          {"frame", r.frame_source}};
 }
 
 // The label of one seat: rank (0 for an excluded one), shifts, relationships, targets.

@@ -2,7 +2,11 @@
 #include "report/report_viewer.h"
 
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
 #include <utility>
+
+#include "report/relationships_table.h"
 
 namespace occlude::app {
 
@@ -38,9 +42,22 @@ ViewerProposal ViewerProposalOf(const DisplayJaws& display, const ReportAnalysis
 }
 
 std::string AnalysisNumbersJson(const ReportAnalysis& analysis) {
-  const nlohmann::json numbers = {{"contact area (mm\u00b2)", analysis.oracle.contact_area_mm2},
-                                  {"contact spots", analysis.spots.size()},
-                                  {"max penetration (mm)", analysis.oracle.max_penetration_mm}};
+  const nlohmann::ordered_json numbers = {
+      {"contact area (mm\u00b2)", analysis.oracle.contact_area_mm2},
+      {"contact spots", analysis.spots.size()},
+      {"max penetration (mm)", analysis.oracle.max_penetration_mm}};
+  return WithRelationships(numbers.dump(), analysis.relationships);
+}
+
+std::string WithRelationships(const std::string& numbers_json, const analysis::Relationships& r) {
+  nlohmann::ordered_json numbers =
+      nlohmann::ordered_json::parse(numbers_json, nullptr, /*allow_exceptions=*/false);
+  if (!numbers.is_object()) {
+    throw std::invalid_argument("WithRelationships: the numbers are not a JSON object");
+  }
+  for (const RelationshipRow& row : RelationshipRows(r)) {
+    numbers[row.name] = row.value + (row.outside ? " (outside " + row.normal + ")" : "");
+  }
   return numbers.dump();
 }
 
@@ -57,11 +74,11 @@ std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const Displ
         {"seat cost", p.seat_cost},
         {"status", planner::ToString(p.status)}};
     const std::string label = "proposal " + std::to_string(k + 1);
-    if (k == 0) {
-      out.push_back(ViewerProposalOf(display, best, label, numbers.dump()));
-    } else {
-      out.push_back(ViewerProposalOf(display, AnalyzePose(session, p.X_LU), label, numbers.dump()));
-    }
+    std::optional<ReportAnalysis> other;  // the first proposal's analysis is given
+    if (k > 0) other = AnalyzePose(session, p.X_LU);
+    const ReportAnalysis& analysis = other ? *other : best;
+    out.push_back(ViewerProposalOf(display, analysis, label,
+                                   WithRelationships(numbers.dump(), analysis.relationships)));
   }
   return out;
 }

@@ -38,12 +38,19 @@ ViewerInputs ReportViewerInputs(const CaseSession& session, const DisplayJaws& d
 ViewerProposal ViewerProposalOf(const DisplayJaws& display, const ReportAnalysis& analysis,
                                 std::string label, std::string numbers_json);
 
-/// The numbers the view lists for an analysis: contact area, spots, maximum penetration.
+/// The numbers the view lists for an analysis: contact area, spots, maximum penetration, then
+/// its clinical relationships (WithRelationships).
 std::string AnalysisNumbersJson(const ReportAnalysis& analysis);
 
+/// `numbers_json` (a JSON object) followed by one entry per clinical relationship, in
+/// clinical.md's order (report/relationships_table.h): "overjet" -> "2.70 mm", a value outside
+/// its normal range followed by "(outside 1 to 3 mm)", a missing one "not found". Throws
+/// std::invalid_argument when numbers_json is not a JSON object.
+std::string WithRelationships(const std::string& numbers_json, const analysis::Relationships& r);
+
 /// The K proposals of a search for the view ("proposal 1".. in rank order), each with its
-/// contact, penetration, seat cost and status; the first from `best` (the analysis of
-/// proposals[0]), the others analysed here on the session's finest oracle.
+/// contact, penetration, seat cost, status and clinical relationships; the first from `best` (the
+/// analysis of proposals[0]), the others analysed here on the session's finest oracle.
 std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const DisplayJaws& display,
                                                const planner::PlanResult& result,
                                                const ReportAnalysis& best);

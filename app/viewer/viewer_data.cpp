@@ -10,7 +10,8 @@
 namespace occlude::app::viewer_detail {
 namespace {
 
-using nlohmann::json;
+// Ordered: a proposal's numbers are listed in the order they were given.
+using json = nlohmann::ordered_json;
 
 // Little-endian bytes of unsigned values of `bytes` bytes each.
 template <typename T>

@@ -48,8 +48,10 @@ TEST(GlobalCommandTest, ProposeGlobalFindsTheDesignedBiteFromASagittalStart) {
   const nlohmann::json& label = best["global"];
   EXPECT_EQ(label["rank"], 1);
   EXPECT_NEAR(label["from_given"]["sagittal_mm"].get<double>(), -kStartShiftMm, 2 * kSeatMm);
-  EXPECT_EQ(label["relationships"]["molar_right"]["class"], "I");
-  EXPECT_EQ(label["relationships"]["molar_left"]["class"], "I");
+  // The one schema of the relationships (as in analysis.json and metrics.json).
+  EXPECT_EQ(label["relationships"]["molar_class"]["right"], "I");
+  EXPECT_EQ(label["relationships"]["molar_class"]["left"], "I");
+  EXPECT_TRUE(label["relationships"].contains("overjet_mm"));
   EXPECT_TRUE(label.contains("targets"));
   EXPECT_NE(Read(tmp / "out" / "report.html").find("Global search"), std::string::npos);
 }

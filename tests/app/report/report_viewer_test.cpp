@@ -10,10 +10,15 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "config/case_config.h"
 #include "occlude/io/mesh_io.h"
+#include "report/relationships_table.h"
 #include "report/report_writer.h"
 #include "test_common.h"
 
@@ -50,6 +55,33 @@ std::string FileBytes(const std::filesystem::path& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// What the view lists beside a pose: the contact first (in the order given), then one entry per
+// clinical relationship with the text of report.html's table, in clinical.md's order.
+TEST(ReportViewerTest, NumbersListTheContactThenEveryRelationship) {
+  ViewerCase& c = Case();
+  const nlohmann::ordered_json numbers =
+      nlohmann::ordered_json::parse(app::AnalysisNumbersJson(c.analysis));
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : numbers.items()) keys.push_back(key);
+  const std::vector<app::RelationshipRow> rows = app::RelationshipRows(c.analysis.relationships);
+  ASSERT_EQ(keys.size(), 3 + rows.size()) << numbers.dump();
+  EXPECT_EQ(keys[0], "contact area (mm\u00b2)");
+  EXPECT_EQ(numbers[keys[0]].get<double>(), c.analysis.oracle.contact_area_mm2);
+  bool some_value = false;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(keys[3 + i], rows[i].name);
+    const std::string shown = numbers[rows[i].name].get<std::string>();
+    EXPECT_EQ(shown.rfind(rows[i].value, 0), 0u) << rows[i].name << ": " << shown;
+    EXPECT_EQ(shown.find("(outside ") != std::string::npos, rows[i].outside) << shown;
+    some_value = some_value || rows[i].mm.has_value();
+  }
+  // The synthetic pair's teeth are found: its overjet at least is a number of mm.
+  EXPECT_TRUE(some_value);
+  ASSERT_TRUE(c.analysis.relationships.overjet.mm.has_value());
+  EXPECT_NE(numbers["overjet"].get<std::string>().find(" mm"), std::string::npos);
+  EXPECT_THROW(app::WithRelationships("[1]", c.analysis.relationships), std::invalid_argument);
 }
 
 TEST(ReportViewerTest, ViewDistancesAreTheAnalysisAtTheKeptVertices) {

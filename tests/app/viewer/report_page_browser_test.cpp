@@ -1,9 +1,11 @@
 // report.html of `propose` (ProposeAndReport on the 5,000-triangle synthetic pair, two
 // distinct proposals) in headless Chromium: the 3D view's canvas is present and drawn, no
-// script error, switching to proposal 2 changes the picture, the still images stay, and the
+// script error, switching to proposal 2 changes the picture and lists its clinical
+// relationships, the still images stay, and the
 // page requests nothing from the network. Skips, saying why, where no browser can run.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 
 #include "config/case_config.h"
@@ -54,6 +56,21 @@ TEST(ReportPageBrowserTest, TheProposeReportDrawsAndSwitchesProposals) {
   EXPECT_EQ(browser->Evaluate("document.querySelector('#occlude-viewer-numbers caption')"
                               ".textContent"),
             "proposal 2");
+  // Beside proposal 2: its clinical relationships, as proposals.json gives them.
+  const json listed = browser->Evaluate(
+      "Object.fromEntries(Array.from(document.querySelectorAll('#occlude-viewer-numbers tr'))"
+      ".map(function(tr) { return [tr.cells[0].textContent, tr.cells[1].textContent]; }))");
+  json proposals_json;
+  std::ifstream(tmp / "out" / "proposals.json") >> proposals_json;
+  const json& overjet = proposals_json["proposals"][1]["relationships"]["overjet_mm"];
+  ASSERT_TRUE(listed.contains("overjet")) << listed.dump();
+  ASSERT_TRUE(listed.contains("molar relationship, right")) << listed.dump();
+  if (overjet.is_number()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f mm", overjet.get<double>());
+    EXPECT_EQ(listed["overjet"].get<std::string>().rfind(text, 0), 0u)
+        << listed["overjet"] << " vs " << overjet;
+  }
   EXPECT_EQ(browser->Evaluate("document.querySelectorAll('figure img').length"), 4);
   EXPECT_TRUE(browser->Errors().empty()) << json(browser->Errors()).dump();
   for (const std::string& url : browser->Requests()) {
