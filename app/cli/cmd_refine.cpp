@@ -56,8 +56,8 @@ struct RefineArgs {
   std::string landmarks;
   bool from_config = false;
   bool watch = false;
-  int max_refinements = 0;  ///< --watch: stop after this many (0 = until interrupted)
-  double poll_seconds = 0.2;
+  int max_refinements = 0;     ///< --watch: stop after this many (0 = until interrupted)
+  double poll_seconds = 0.05;  ///< --watch: how often the config's time stamp is read (a stat)
   double memory_budget_mb = 0;
   std::vector<int> serve;  ///< --serve [PORT]: {PORT}, {0} without one; empty = not serving
   std::string bind;        ///< --bind ADDR
