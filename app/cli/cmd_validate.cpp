@@ -35,6 +35,9 @@ struct ValidateArgs {
   double scan_step_mm = planner::GlobalScanSettings{}.sagittal_step_mm;
   std::vector<int> basins = {planner::GlobalScanSettings{}.max_basins,
                              planner::GlobalScanSettings{}.max_refined};
+  std::vector<std::string> kinds = ValidateOptions{}.global_kinds;
+  double cusp_period_mm = ValidateOptions{}.cusp_period_mm;
+  std::string clinical;       // --clinical FILE
   bool solver_given = false;  // --solver on the command line
 };
 
@@ -48,8 +51,10 @@ void RunGlobalValidateCommand(const ValidateArgs& args, ValidateOptions options,
   options.global_scan.sagittal_step_mm = args.scan_step_mm;
   options.global_scan.max_basins = args.basins[0];
   options.global_scan.max_refined = args.basins[1];
+  options.global_kinds = args.kinds;
+  options.cusp_period_mm = args.cusp_period_mm;
   std::cerr << "validate --global: case " << jaws.name << ", " << options.solvers.size()
-            << " solver(s) x " << GlobalStartKinds().size() << " start kinds x " << options.starts
+            << " solver(s) x " << options.global_kinds.size() << " start kinds x " << options.starts
             << " starts; " << machine << "\n";
   const GlobalValidateResult result = RunGlobalValidation(jaws, options);
   const std::filesystem::path out(args.out);
@@ -92,6 +97,7 @@ void RunValidateCommand(const ValidateArgs& args) {
   options.contact_band_mm = args.band_mm;
   options.max_penetration_mm = args.max_penetration_mm;
   options.log = &std::cerr;
+  if (!args.clinical.empty()) options.clinical = LoadClinicalTargets(args.clinical);
   PrepareOutputDir(args.out);
   const JawPair jaws = args.case_dir.empty() ? SyntheticJawPair(args.synthetic, args.seed)
                                              : LoadCaseFolder(args.case_dir);
@@ -136,6 +142,23 @@ void AddValidateCommand(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  auto* kinds_opt =
+      cmd->add_option(
+             "--kinds", args->kinds,
+             "With --global: the start kinds (comma separated): near, sagittal, apart, cusp")
+          ->delimiter(',')
+          ->capture_default_str()
+          ->check(CLI::IsMember(GlobalStartKinds()));
+  auto* cusp_opt =
+      cmd->add_option(
+             "--cusp-period", args->cusp_period_mm,
+             "With --global: how far the cusp kind's starts are shifted along the arch, mm")
+          ->capture_default_str()
+          ->check(MmBetween(0.5, false, 20.0, "a shift in mm between 0.5 and 20"));
+  auto* clinical_opt =
+      cmd->add_option("--clinical", args->clinical,
+                      "With --global: rank the seats by the [clinical] table of this TOML file (a "
+                      "case config or a file with only that table) instead of the default ranking");
   auto* solver_opt =
       cmd->add_option("--solver", args->solvers,
                       "Solvers (comma separated): ceres, coarse-to-fine, nlopt-local, nlopt-global")
@@ -175,8 +198,14 @@ void AddValidateCommand(CLI::App& app) {
   cmd->add_flag("--global", args->global,
                 "Global scope: the solvers from near, sagittal and apart starts (--starts per "
                 "kind), scored against the seat of the reference too");
-  cmd->callback([args, solver_opt] {
+  cmd->callback([args, solver_opt, kinds_opt, cusp_opt, clinical_opt] {
     args->solver_given = solver_opt->count() > 0;
+    for (const CLI::Option* global_only : {kinds_opt, cusp_opt, clinical_opt}) {
+      if (!args->global && global_only->count() > 0)
+        throw UserError("validate: " + global_only->get_name() +
+                        " applies to --global only; "
+                        "add --global or leave it out");
+    }
     if (args->case_dir.empty() && args->synthetic == 0) {
       throw UserError(
           "validate: give --case DIR (with upper.stl and lower.stl at the bite) or --synthetic N");

@@ -3,10 +3,7 @@
 #include "config/case_config.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "base/axis_name.h"
@@ -405,14 +402,7 @@ std::size_t EditDistance(const std::string& a, const std::string& b) {
 
 CaseConfig ParseCaseConfig(const std::string& text, const std::filesystem::path& file) {
   const std::filesystem::path abs = std::filesystem::absolute(file).lexically_normal();
-  toml::table root;
-  try {
-    root = toml::parse(text, abs.string());
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << abs.string() << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw UserError(toml_config::OneLine(s.str()));
-  }
+  const toml::table root = toml_config::ParseText(text, abs);
   CaseConfig c;
   c.file = abs;
   c.name = abs.stem().string();
@@ -421,20 +411,7 @@ CaseConfig ParseCaseConfig(const std::string& text, const std::filesystem::path&
 }
 
 CaseConfig LoadCaseConfig(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw UserError(file.string() + ": no such config file");
-  if (std::filesystem::is_directory(file, ec)) {
-    throw UserError(file.string() + ": is a folder; give the case's .toml file");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    const int error = errno;
-    throw UserError(file.string() + ": cannot read the config file: " + std::strerror(error) +
-                    (error == EACCES ? "; check the file's permissions" : ""));
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseCaseConfig(text.str(), file);
+  return ParseCaseConfig(toml_config::ReadConfigText(file), file);
 }
 
 Eigen::Isometry3d StartPoseOf(const CaseConfig& config, const Eigen::Vector3d& default_pivot_L) {

@@ -1,5 +1,8 @@
 // Checked TOML table access for case files (see case_config_toml_internal.h).
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -9,6 +12,34 @@
 #include "config/pose_file.h"
 
 namespace occlude::app::toml_config {
+
+std::string ReadConfigText(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw UserError(file.string() + ": no such config file");
+  if (std::filesystem::is_directory(file, ec)) {
+    throw UserError(file.string() + ": is a folder; give the case's .toml file");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    const int error = errno;
+    throw UserError(file.string() + ": cannot read the config file: " + std::strerror(error) +
+                    (error == EACCES ? "; check the file's permissions" : ""));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+toml::table ParseText(const std::string& text, const std::filesystem::path& abs_file) {
+  try {
+    return toml::parse(text, abs_file.string());
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << abs_file.string() << ":" << e.source().begin.line
+      << ": not valid TOML: " << e.description();
+    throw UserError(OneLine(s.str()));
+  }
+}
 
 std::string OneLine(const std::string& text) {
   std::string out;

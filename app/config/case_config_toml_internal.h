@@ -18,6 +18,13 @@ namespace occlude::app::toml_config {
 /// that a message quoting keys or values from the file stays one line.
 std::string OneLine(const std::string& text);
 
+/// The text of a config file. Throws UserError: "<file>: no such config file", "<file>: is a
+/// folder; give the case's .toml file" or "<file>: cannot read the config file: <why>".
+std::string ReadConfigText(const std::filesystem::path& file);
+
+/// `text` parsed as TOML; `abs_file` names it in the error "<file>:<line>: not valid TOML: ...".
+toml::table ParseText(const std::string& text, const std::filesystem::path& abs_file);
+
 /// The key of `candidates` `word` most likely meant: one it abbreviates (or that abbreviates
 /// it) first, then the fewest edits (empty if there are no candidates).
 std::string ClosestKey(const std::string& word, const std::vector<std::string>& candidates);

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/user_error.h"
 #include "config/clinical_targets_internal.h"
 
 namespace occlude::app {
@@ -75,6 +76,17 @@ ClinicalTargets ReadClinicalTable(const toml_config::Table& t) {
       t.Fail("mode", "'" + *v + "' is not a mode; use \"rank\" or \"constraint\"");
   }
   return c;
+}
+
+ClinicalTargets LoadClinicalTargets(const std::filesystem::path& file) {
+  const std::filesystem::path abs = std::filesystem::absolute(file).lexically_normal();
+  const toml::table root = toml_config::ParseText(toml_config::ReadConfigText(file), abs);
+  const auto table = toml_config::Table(root, "", abs).SubTable("clinical");
+  if (!table) {
+    throw UserError(file.string() +
+                    ": no [clinical] table; give one, e.g. [clinical] molar_class = \"I\"");
+  }
+  return ReadClinicalTable(*table);
 }
 
 }  // namespace occlude::app

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,5 +41,10 @@ struct ClinicalTargets {
 
 /// "rank" or "constraint".
 const char* ToString(ClinicalTargets::Mode mode);
+
+/// The [clinical] table of a TOML file (a case config or a file holding only that table; its
+/// other tables are not read). Throws UserError naming the file: not found, not TOML, no
+/// [clinical] table, or a key of the table wrong (as in a case config).
+ClinicalTargets LoadClinicalTargets(const std::filesystem::path& file);
 
 }  // namespace occlude::app

@@ -93,6 +93,21 @@ std::string RelationshipsLine(const analysis::Relationships& r) {
          MeasureText(r.midline_deviation);
 }
 
+std::string TargetsLine(const ClinicalTargets& targets) {
+  const auto sides = [](const std::array<std::optional<std::string>, 2>& c) {
+    return c[0].value_or("-") + "/" + c[1].value_or("-");
+  };
+  const auto interval = [](const MmInterval& i) {
+    return "[" + Fixed(i.min, 1) + ", " + Fixed(i.max, 1) + "] mm";
+  };
+  std::string line =
+      "molar " + sides(targets.molar_class) + ", canine " + sides(targets.canine_class);
+  if (targets.overjet_mm) line += ", overjet " + interval(*targets.overjet_mm);
+  if (targets.overbite_mm) line += ", overbite " + interval(*targets.overbite_mm);
+  if (targets.midline_max_mm) line += ", midline <= " + MmText(*targets.midline_max_mm);
+  return line + "; " + ToString(targets.mode);
+}
+
 planner::SeatJudgement JudgeRelationships(const ClinicalTargets& targets,
                                           const analysis::Relationships& r) {
   planner::SeatJudgement j;

@@ -40,6 +40,11 @@ planner::SeatJudgement JudgeRelationships(const ClinicalTargets& targets,
 /// midline 0.3 mm" (right/left; "?" for a measure not given).
 std::string RelationshipsLine(const analysis::Relationships& r);
 
+/// The targets in one line: "molar I/I, canine I/I, overjet [1.0, 3.0] mm, overbite [1.0, 3.0]
+/// mm, midline <= 2.0 mm; rank" (right/left; "-" for a side without a target; a measure without
+/// a target left out).
+std::string TargetsLine(const ClinicalTargets& targets);
+
 /// The judge of the global search: JudgeRelationships at each seat's X_LU (U in L).
 /// `analysis` must outlive the judge.
 planner::SeatJudge ClinicalJudge(const ClinicalTargets& targets, const CaseAnalysis& analysis);

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/clinical_targets.h"
 #include "occlude/planner/global_search.h"
 #include "occlude/planner/plan.h"
 #include "session/jaw_pair.h"
@@ -55,8 +56,13 @@ struct ValidateOptions {
   double success_mm = 0.3, success_deg = 1.0;
   int path_steps = 20;          ///< poses on the reference check's path (ReferenceCheck)
   std::ostream* log = nullptr;  ///< progress lines
-  /// `--global` only (validate_global.h): the global search's scan.
+  /// `--global` only (validate_global.h): the global search's scan, the start kinds run (of
+  /// GlobalStartKinds(), in that order), the cusp kind's shift and the clinical targets the
+  /// seats are ranked by (the default ranking unless `--clinical FILE`).
   planner::GlobalScanSettings global_scan;
+  std::vector<std::string> global_kinds = {"near", "sagittal", "apart"};
+  double cusp_period_mm = 7.0;
+  ClinicalTargets clinical;
 };
 
 struct ValidateRun {

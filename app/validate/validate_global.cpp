@@ -7,6 +7,7 @@
 
 #include "base/percentile.h"
 #include "base/timing.h"
+#include "base/user_error.h"
 #include "occlude/planner/global_search.h"
 #include "occlude/planner/global_starts.h"
 #include "session/case_analysis.h"
@@ -47,8 +48,13 @@ Eigen::Isometry3d StartPose(const GlobalSetup& s, const GlobalJob& job) {
   }
   std::mt19937 rng(s.options->seed * 7919u + static_cast<std::uint32_t>(job.start) * 104729u +
                    static_cast<std::uint32_t>(job.kind) * 15485863u);
-  if (GlobalStartKinds()[job.kind] == "sagittal")
+  const std::string& kind = GlobalStartKinds()[job.kind];
+  if (kind == "sagittal")
     return planner::SagittalStart(s.X_ref, s.pivot_L, s.lower_L.anterior_J, rng);
+  if (kind == "cusp") {
+    const double shift_mm = (job.start % 2 == 0 ? 1.0 : -1.0) * s.options->cusp_period_mm;
+    return planner::CuspStart(s.X_ref, s.pivot_L, s.lower_L.anterior_J, shift_mm, rng);
+  }
   return planner::ApartStart(s.X_ref, s.pivot_L, rng);
 }
 
@@ -60,6 +66,24 @@ planner::JawArch Moved(planner::JawArch a, const Eigen::Isometry3d& X) {
   a.lateral_J = X.linear() * a.lateral_J;
   for (Eigen::Vector3d& p : a.curve_J) p = X * p;
   return a;
+}
+
+std::string ClassPair(const analysis::SideRelationship (&sides)[2]) {
+  const auto one = [](const analysis::SideRelationship& side) {
+    return side.occlusion_class ? std::string(analysis::ToString(*side.occlusion_class)) : "?";
+  };
+  return one(sides[0]) + "/" + one(sides[1]);
+}
+
+// The top proposal's relationships against the targets of the options.
+void JudgeTop(const Eigen::Isometry3d& X_LU, const GlobalSetup& s, GlobalValidateRun* out) {
+  const analysis::Relationships r = RelationshipsAt(s.analysis, X_LU);
+  out->top_molar_class = ClassPair(r.molar);
+  out->top_canine_class = ClassPair(r.canine);
+  const std::vector<TargetCheck> checks = CheckTargets(s.options->clinical, r);
+  out->targets_met = std::all_of(checks.begin(), checks.end(),
+                                 [](const TargetCheck& c) { return !c.has_value || c.met; });
+  out->top_penalty = JudgeRelationships(s.options->clinical, r).penalty;
 }
 
 // Fills the seat columns from the proposals (poses of U in L).
@@ -114,7 +138,7 @@ GlobalValidateRun RunGlobalJob(const GlobalJob& job, const GlobalSetup& s) {
   g.local = BaseRequest(o);
   g.local.solver = job.solver;
   g.local.max_proposals = kGlobalProposals;
-  const ClinicalTargets targets;  // the default ranking
+  const ClinicalTargets& targets = o.clinical;
   const CaseAnalysis& analysis = s.analysis;
   g.ranking.judge = [&targets, &analysis, &X_start](const planner::GlobalProposal& seat) {
     return JudgeRelationships(targets, RelationshipsAt(analysis, seat.proposal.X_LU * X_start));
@@ -131,6 +155,7 @@ GlobalValidateRun RunGlobalJob(const GlobalJob& job, const GlobalSetup& s) {
   out.wall_seconds = r.wall_seconds;
   FillRun(r, X_start, s, &out.run);
   ScoreSeat(r, X_start, s, &out);
+  if (!r.proposals.empty()) JudgeTop(out.run.X_LU, s, &out);
   return out;
 }
 
@@ -140,9 +165,10 @@ GlobalValidateSummary SummarizeKind(const std::vector<const GlobalValidateRun*>&
   row.solver = group.front()->run.solver;
   row.runs = static_cast<int>(group.size());
   std::vector<double> seat_mm, seat_deg, err_mm, cpu, wall;
-  int ok = 0, seat_ok = 0, among = 0;
+  int ok = 0, seat_ok = 0, among = 0, met = 0;
   for (const GlobalValidateRun* r : group) {
     ok += r->run.success ? 1 : 0;
+    met += r->targets_met ? 1 : 0;
     seat_ok += r->seat_success ? 1 : 0;
     among += r->seat_rank > 0 ? 1 : 0;
     seat_mm.push_back(r->seat_err_mm);
@@ -158,6 +184,7 @@ GlobalValidateSummary SummarizeKind(const std::vector<const GlobalValidateRun*>&
   row.success_rate = ok / n;
   row.seat_success_rate = seat_ok / n;
   row.seat_among_rate = among / n;
+  row.targets_met_rate = met / n;
   row.median_seat_err_mm = NearestRankPercentile(seat_mm, 0.5, 0.0);
   row.p95_seat_err_mm = NearestRankPercentile(seat_mm, 0.95, 0.0);
   row.median_seat_err_deg = NearestRankPercentile(seat_deg, 0.5, 0.0);
@@ -165,6 +192,23 @@ GlobalValidateSummary SummarizeKind(const std::vector<const GlobalValidateRun*>&
   row.median_seconds = NearestRankPercentile(cpu, 0.5, 0.0);
   row.median_wall_seconds = NearestRankPercentile(wall, 0.5, 0.0);
   return row;
+}
+
+// The indices in GlobalStartKinds() of the kinds asked for, in its order; a UserError naming
+// --kinds for an unknown kind or none.
+std::vector<std::size_t> KindIndices(const std::vector<std::string>& asked) {
+  const std::vector<std::string>& all = GlobalStartKinds();
+  for (const std::string& kind : asked) {
+    if (std::find(all.begin(), all.end(), kind) == all.end())
+      throw UserError("--kinds: '" + kind +
+                      "' is not a start kind; use near, sagittal, apart, cusp");
+  }
+  std::vector<std::size_t> indices;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (std::find(asked.begin(), asked.end(), all[k]) != asked.end()) indices.push_back(k);
+  }
+  if (indices.empty()) throw UserError("--kinds: give at least one of near, sagittal, apart, cusp");
+  return indices;
 }
 
 // The arches, the seat of the reference and the shared settings.
@@ -182,11 +226,12 @@ void Prepare(const JawPair& jaws, const ValidateOptions& options, GlobalSetup* s
 }  // namespace
 
 const std::vector<std::string>& GlobalStartKinds() {
-  static const std::vector<std::string> kinds = {"near", "sagittal", "apart"};
+  static const std::vector<std::string> kinds = {"near", "sagittal", "apart", "cusp"};
   return kinds;
 }
 
 GlobalValidateResult RunGlobalValidation(const JawPair& jaws, const ValidateOptions& options) {
+  const std::vector<std::size_t> kinds = KindIndices(options.global_kinds);
   GlobalValidateResult result;
   result.case_name = jaws.name;
   GlobalSetup s;
@@ -201,7 +246,7 @@ GlobalValidateResult RunGlobalValidation(const JawPair& jaws, const ValidateOpti
   result.seat = s.seat;
   result.seat_from_reference = planner::ComparePoses(s.seat.X_LU, s.X_ref, s.points_U);
   std::vector<GlobalJob> jobs;
-  for (std::size_t kind = 0; kind < GlobalStartKinds().size(); ++kind) {
+  for (const std::size_t kind : kinds) {
     for (int k = 0; k < options.starts; ++k) {
       for (const planner::SolverKind solver : options.solvers) jobs.push_back({kind, k, solver});
     }
@@ -209,11 +254,11 @@ GlobalValidateResult RunGlobalValidation(const JawPair& jaws, const ValidateOpti
   result.runs.resize(jobs.size());
   RunInParallel(jobs.size(), options,
                 [&](std::size_t j) { result.runs[j] = RunGlobalJob(jobs[j], s); });
-  for (const std::string& kind : GlobalStartKinds()) {
+  for (const std::size_t kind : kinds) {
     for (const planner::SolverKind solver : options.solvers) {
       std::vector<const GlobalValidateRun*> group;
       for (const GlobalValidateRun& r : result.runs) {
-        if (r.start_kind == kind && r.run.solver == solver) group.push_back(&r);
+        if (r.start_kind == GlobalStartKinds()[kind] && r.run.solver == solver) group.push_back(&r);
       }
       if (!group.empty()) result.summary.push_back(SummarizeKind(group));
     }

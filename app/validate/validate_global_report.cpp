@@ -7,6 +7,7 @@
 
 #include "base/text_format.h"
 #include "chart/chart.h"
+#include "session/clinical_judge.h"
 #include "validate/validate_global.h"
 
 namespace occlude::app {
@@ -16,7 +17,7 @@ std::string GlobalValidateCsv(const GlobalValidateResult& result) {
   s << "start_kind,solver,start,magnitude_mm,magnitude_deg,success,err_mm,err_deg,seat_success,"
        "seat_err_mm,seat_err_deg,seat_rank,proposals,excluded,start_err_mm,start_err_deg,"
        "contact_area_mm2,constrained_penetration_mm,max_penetration_mm,seconds,wall_seconds,"
-       "status,evaluations\n";
+       "status,evaluations,top_molar_class,top_canine_class,targets_met,top_penalty\n";
   s << std::setprecision(6);
   for (const GlobalValidateRun& g : result.runs) {
     const ValidateRun& r = g.run;
@@ -27,7 +28,9 @@ std::string GlobalValidateCsv(const GlobalValidateResult& result) {
       << ',' << g.excluded << ',' << r.start_error.translation_mm << ','
       << r.start_error.rotation_deg << ',' << r.contact_area_mm2 << ','
       << r.constrained_penetration_mm << ',' << r.max_penetration_mm << ',' << r.seconds << ','
-      << g.wall_seconds << ',' << r.status << ',' << r.evaluations << '\n';
+      << g.wall_seconds << ',' << r.status << ',' << r.evaluations << ',' << g.top_molar_class
+      << ',' << g.top_canine_class << ',' << (g.targets_met ? 1 : 0) << ',' << g.top_penalty
+      << '\n';
   }
   return s.str();
 }
@@ -36,14 +39,15 @@ std::string GlobalValidateSummaryCsv(const GlobalValidateResult& result) {
   std::ostringstream s;
   s << "start_kind,solver,runs,success_rate,seat_success_rate,seat_among_rate,median_seat_err_mm,"
        "p95_seat_err_mm,median_seat_err_deg,median_err_mm,median_seconds,max_seconds,"
-       "median_wall_seconds,worst_penetration_mm\n";
+       "median_wall_seconds,worst_penetration_mm,targets_met_rate\n";
   s << std::setprecision(6);
   for (const GlobalValidateSummary& r : result.summary) {
     s << r.start_kind << ',' << planner::ToString(r.solver) << ',' << r.runs << ','
       << r.success_rate << ',' << r.seat_success_rate << ',' << r.seat_among_rate << ','
       << r.median_seat_err_mm << ',' << r.p95_seat_err_mm << ',' << r.median_seat_err_deg << ','
       << r.median_err_mm << ',' << r.median_seconds << ',' << r.max_seconds << ','
-      << r.median_wall_seconds << ',' << r.worst_penetration_mm << '\n';
+      << r.median_wall_seconds << ',' << r.worst_penetration_mm << ',' << r.targets_met_rate
+      << '\n';
   }
   return s.str();
 }
@@ -58,6 +62,12 @@ std::string GlobalValidateSummaryText(const GlobalValidateResult& result,
   s << " mm" << (options.exact_last ? " + exact" : "") << "; " << options.starts
     << " starts per kind, seed " << options.seed << "; success within " << options.success_mm
     << " mm and " << options.success_deg << " deg\n";
+  s << "clinical targets" << (options.clinical.from_config ? " (--clinical)" : " (the default)")
+    << ": " << TargetsLine(options.clinical);
+  if (std::find(options.global_kinds.begin(), options.global_kinds.end(), "cusp") !=
+      options.global_kinds.end())
+    s << "; cusp starts " << Fixed(options.cusp_period_mm, 1) << " mm off";
+  s << "\n";
   s << "arch analysis and the reference's oracles in " << Fixed(result.build_seconds, 1)
     << " s (wall)\n";
   s << "seat of the reference (the local search from it): "
@@ -68,7 +78,7 @@ std::string GlobalValidateSummaryText(const GlobalValidateResult& result,
     << std::setw(5) << "runs" << std::setw(7) << "seat" << std::setw(8) << "among" << std::setw(9)
     << "vs ref" << std::setw(11) << "seat mm" << std::setw(9) << "p95 mm" << std::setw(9)
     << "seat deg" << std::setw(8) << "cpu s" << std::setw(8) << "max s" << std::setw(8) << "wall s"
-    << std::setw(9) << "pen max"
+    << std::setw(9) << "pen max" << std::setw(9) << "targets"
     << "\n";
   for (const GlobalValidateSummary& r : result.summary) {
     s << std::left << std::setw(10) << r.start_kind << std::setw(15) << planner::ToString(r.solver)
@@ -79,12 +89,15 @@ std::string GlobalValidateSummaryText(const GlobalValidateResult& result,
       << std::setw(9) << Fixed(r.p95_seat_err_mm, 3) << std::setw(9)
       << Fixed(r.median_seat_err_deg, 2) << std::setw(8) << Fixed(r.median_seconds, 2)
       << std::setw(8) << Fixed(r.max_seconds, 2) << std::setw(8) << Fixed(r.median_wall_seconds, 2)
-      << std::setw(9) << Fixed(r.worst_penetration_mm, 3) << "\n";
+      << std::setw(9) << Fixed(r.worst_penetration_mm, 3) << std::setw(8)
+      << Fixed(100.0 * r.targets_met_rate, 0) << "%\n";
   }
   s << "\n'seat' = seat_success: the top proposal within the bar of the seat of the reference; "
        "'among' = the seat\namong the "
        "proposals; 'vs ref' = the top proposal within the bar of the reference itself; errors "
-       "(median, 95th\npercentile) of the top proposal against the seat.\n";
+       "(median, 95th\npercentile) of the top proposal against the seat; 'targets' = the top "
+       "proposal meets\nevery measured clinical target (validate.csv: its molar and canine "
+       "classes, right/left).\n";
   return s.str();
 }
 
@@ -98,7 +111,11 @@ std::vector<std::pair<std::string, std::string>> GlobalValidateCharts(
   chart.subtitle = subtitle + " | solid: top proposal at the seat of the reference (within " +
                    Fixed(options.success_mm, 1) + " mm and " + Fixed(options.success_deg, 0) +
                    " deg); dashed: at the reference";
-  chart.x_categories = GlobalStartKinds();
+  for (const GlobalValidateSummary& r : result.summary) {
+    if (std::find(chart.x_categories.begin(), chart.x_categories.end(), r.start_kind) ==
+        chart.x_categories.end())
+      chart.x_categories.push_back(r.start_kind);
+  }
   chart.y_include = {0.0, 100.0};
   int color = 0;
   for (const planner::SolverKind solver : options.solvers) {
@@ -106,7 +123,7 @@ std::vector<std::pair<std::string, std::string>> GlobalValidateCharts(
     ChartSeries ref{std::string(planner::ToString(solver)) + ", reference", {}, {}, color, true};
     for (const GlobalValidateSummary& r : result.summary) {
       if (r.solver != solver) continue;
-      const auto& kinds = GlobalStartKinds();
+      const auto& kinds = chart.x_categories;
       const double x =
           static_cast<double>(std::find(kinds.begin(), kinds.end(), r.start_kind) - kinds.begin());
       seat.x.push_back(x);

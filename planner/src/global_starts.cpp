@@ -1,6 +1,8 @@
 // The validation starts of the global search (see global_starts.h).
 #include "occlude/planner/global_starts.h"
 
+#include <cmath>
+
 #include "occlude/planner/pose.h"
 
 namespace occlude::planner {
@@ -23,6 +25,15 @@ Eigen::Isometry3d SagittalStart(const Eigen::Isometry3d& X_LU_ref, const Eigen::
   PoseParameters p;
   p.translation_mm = shift * anterior_L;
   p.rotation_deg = 10.0 * unit(rng) * RandomUnitVector(rng);
+  return ComposePose(p, p_LPivot, X_LU_ref);
+}
+
+Eigen::Isometry3d CuspStart(const Eigen::Isometry3d& X_LU_ref, const Eigen::Vector3d& p_LPivot,
+                            const Eigen::Vector3d& anterior_L, double shift_mm, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  PoseParameters p;
+  p.translation_mm = shift_mm * anterior_L + 0.5 * std::cbrt(unit(rng)) * RandomUnitVector(rng);
+  p.rotation_deg = 3.0 * unit(rng) * RandomUnitVector(rng);
   return ComposePose(p, p_LPivot, X_LU_ref);
 }
 

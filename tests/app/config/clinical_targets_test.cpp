@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "base/user_error.h"
 #include "config/case_config.h"
+#include "test_common.h"
 
 namespace occlude::test {
 namespace {
@@ -83,6 +86,53 @@ TEST(ClinicalTargetsTest, BadValuesNameTheKey) {
     const std::string e = ErrorOf(c.text);
     EXPECT_NE(e.find(c.key), std::string::npos) << c.text << " -> " << e;
     EXPECT_NE(e.find(c.fix), std::string::npos) << c.text << " -> " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+}
+
+std::string LoadError(const std::filesystem::path& file) {
+  try {
+    app::LoadClinicalTargets(file);
+  } catch (const app::UserError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// `validate --global --clinical FILE`: the [clinical] table of a file with only that table or
+// of a whole case config; a file without one, a missing file and a bad key are one line naming
+// the file (and the key).
+TEST(ClinicalTargetsTest, LoadsTheClinicalTableOfAFile) {
+  TempDir tmp;
+  std::ofstream(tmp / "targets.toml") << "[clinical]\nmolar_class = \"I\"\nmode = \"constraint\"\n";
+  const ClinicalTargets only = app::LoadClinicalTargets(tmp / "targets.toml");
+  EXPECT_TRUE(only.from_config);
+  EXPECT_EQ(only.molar_class[0], "I");
+  EXPECT_EQ(only.molar_class[1], "I");
+  EXPECT_FALSE(only.canine_class[0]);
+  EXPECT_FALSE(only.overjet_mm);
+  EXPECT_EQ(only.mode, ClinicalTargets::Mode::kConstraint);
+
+  std::ofstream(tmp / "case.toml") << "[synthetic]\ntriangles = 6000\n[clinical]\n"
+                                      "canine_class_left = \"II\"\n";
+  const ClinicalTargets from_case = app::LoadClinicalTargets(tmp / "case.toml");
+  EXPECT_FALSE(from_case.molar_class[0]);
+  EXPECT_EQ(from_case.canine_class[1], "II");
+
+  std::ofstream(tmp / "none.toml") << "[synthetic]\ntriangles = 6000\n";
+  std::ofstream(tmp / "bad.toml") << "[clinical]\nmolar_class = \"IV\"\n";
+  std::ofstream(tmp / "broken.toml") << "[clinical\n";
+  const struct {
+    std::filesystem::path file;
+    const char* says;
+  } cases[] = {{tmp / "none.toml", "no [clinical] table"},
+               {tmp / "missing.toml", "no such config file"},
+               {tmp / "bad.toml", "clinical.molar_class"},
+               {tmp / "broken.toml", "not valid TOML"}};
+  for (const auto& c : cases) {
+    const std::string e = LoadError(c.file);
+    EXPECT_NE(e.find(c.file.filename().string()), std::string::npos) << e;
+    EXPECT_NE(e.find(c.says), std::string::npos) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
 }

@@ -103,5 +103,19 @@ TEST(ClinicalJudgeTest, RankModeRanksTheClassIISeatBelow) {
   EXPECT_EQ(planner::RankSeats(Seats(), RankingWith(class2), 4).proposals[0].basin, 0);
 }
 
+// The targets in one line, as validate --global's summary names them.
+TEST(ClinicalJudgeTest, TargetsLineNamesEveryTargetAndTheMode) {
+  EXPECT_EQ(app::TargetsLine(app::ClinicalTargets{}),
+            "molar I/I, canine I/I, overjet [1.0, 3.0] mm, overbite [1.0, 3.0] mm, midline <= "
+            "2.0 mm; rank");
+  app::ClinicalTargets molar_only;
+  molar_only.canine_class = {std::nullopt, std::nullopt};
+  molar_only.molar_class[1] = "II";
+  molar_only.overjet_mm = molar_only.overbite_mm = std::nullopt;
+  molar_only.midline_max_mm = std::nullopt;
+  molar_only.mode = app::ClinicalTargets::Mode::kConstraint;
+  EXPECT_EQ(app::TargetsLine(molar_only), "molar I/II, canine -/-; constraint");
+}
+
 }  // namespace
 }  // namespace occlude::test
