@@ -97,13 +97,23 @@ struct HapticOptions {
   std::ostream* log = nullptr;
 };
 
+/// A tick's miss is the machine's (a wall-clock stall) when the time its thread spent off the
+/// CPU explains it. The loop busy-waits between ticks, so its thread always wants the CPU: wall
+/// time minus the thread's CPU time over the tick's window (from the previous tick's answer to
+/// this one's) is time the machine took away. `stalled` when the answer, that time taken off,
+/// would have met the deadline (release + period); otherwise the query itself was too slow.
+bool MissIsAStall(double release_s, double period_s, double done_s, double off_cpu_s);
+
 struct HapticRow {
   std::string method, variant, query;
   double voxel_mm = std::numeric_limits<double>::quiet_NaN();
   double period_us = 0.0;
   std::size_t ticks_planned = 0, ticks = 0, misses = 0;
+  /// Misses a wall-clock stall explains (MissIsAStall); misses - misses_stalled are the query's.
+  std::size_t misses_stalled = 0;
   double p50_us = 0, p99_us = 0, p999_us = 0, max_us = 0;  ///< wall latency per tick
   double cpu_p50_us = 0;                                   ///< thread CPU per tick
+  double off_cpu_max_us = 0;  ///< the longest time a tick's window spent off the CPU
 };
 
 std::vector<HapticRow> RunHaptic(const BenchCase& bench_case, const HapticOptions& options);

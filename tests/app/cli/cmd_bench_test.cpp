@@ -154,6 +154,10 @@ TEST(BenchCommandTest, HapticLoopReportsEveryTickAndThePercentiles) {
     EXPECT_LE(std::stod(row.at("p50_us")), std::stod(row.at("p99_us")));
     EXPECT_LE(std::stod(row.at("p99_us")), std::stod(row.at("p999_us")));
     EXPECT_LE(std::stod(row.at("p999_us")), std::stod(row.at("max_us")));
+    // Every miss is either a wall-clock stall or the query's.
+    EXPECT_EQ(std::stoi(row.at("misses_stalled")) + std::stoi(row.at("misses_query")),
+              std::stoi(row.at("misses")));
+    EXPECT_GE(std::stod(row.at("off_cpu_max_us")), 0.0);
   }
   for (const char* q :
        {"ist:oracle-voxel", "ist:oracle-subvoxel", "ist:oracle-exact", "ist:boolean"}) {
