@@ -97,23 +97,24 @@ struct HapticOptions {
   std::ostream* log = nullptr;
 };
 
-/// A tick's miss is the machine's (a wall-clock stall) when the time its thread spent off the
-/// CPU explains it. The loop busy-waits between ticks, so its thread always wants the CPU: wall
-/// time minus the thread's CPU time over the tick's window (from the previous tick's answer to
-/// this one's) is time the machine took away. `stalled` when the answer, that time taken off,
-/// would have met the deadline (release + period); otherwise the query itself was too slow.
-bool MissIsAStall(double release_s, double period_s, double done_s, double off_cpu_s);
+/// When tick k's answer would have come on a machine that never takes the loop's thread off the
+/// CPU: its release or the previous tick's answer there (`unstalled_done_s`), whichever is
+/// later, plus the thread CPU time its query took. A missed tick whose unstalled answer meets
+/// the deadline (release + period) is a wall-clock stall of the machine; one whose unstalled
+/// answer misses too is the query's (its own CPU time, with the backlog of the ticks before it).
+double UnstalledDone(double unstalled_done_s, double release_s, double query_cpu_s);
 
 struct HapticRow {
   std::string method, variant, query;
   double voxel_mm = std::numeric_limits<double>::quiet_NaN();
   double period_us = 0.0;
   std::size_t ticks_planned = 0, ticks = 0, misses = 0;
-  /// Misses a wall-clock stall explains (MissIsAStall); misses - misses_stalled are the query's.
+  /// Misses the unstalled schedule (UnstalledDone) meets: wall-clock stalls of the machine;
+  /// misses - misses_stalled are the query's.
   std::size_t misses_stalled = 0;
   double p50_us = 0, p99_us = 0, p999_us = 0, max_us = 0;  ///< wall latency per tick
   double cpu_p50_us = 0;                                   ///< thread CPU per tick
-  double off_cpu_max_us = 0;  ///< the longest time a tick's window spent off the CPU
+  double off_cpu_max_us = 0;  ///< longest wall minus thread CPU time between two answers
 };
 
 std::vector<HapticRow> RunHaptic(const BenchCase& bench_case, const HapticOptions& options);

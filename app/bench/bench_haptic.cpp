@@ -23,8 +23,10 @@ namespace {
 // Replays the trajectory with one `query` per tick. Tick k is released at
 // t0 + k * period (busy-waiting, as a haptic servo loop does); it misses its
 // deadline when the answer comes later than its release plus one period, and the
-// miss is the machine's when the window's time off the CPU explains it
-// (MissIsAStall). A slow method is stopped after max_wall_factor times the trajectory.
+// miss is a wall-clock stall when the unstalled schedule (UnstalledDone) meets it.
+// The loop busy-waits, so its thread always wants the CPU: wall minus thread CPU
+// time between two answers is time the machine took it off. A slow method is
+// stopped after max_wall_factor times the trajectory.
 HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double max_wall_factor,
                  const std::function<void(const Eigen::Isometry3d&)>& query) {
   HapticRow row;
@@ -37,7 +39,7 @@ HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double ma
   query(trajectory.At(0.0));  // warm-up
   const double t0 = NowSeconds() + 1e-3;
   const double stop = t0 + max_wall_factor * trajectory.seconds();
-  double window_wall = NowSeconds(), window_cpu = ThreadCpuSeconds();
+  double unstalled_done = t0, last_wall = NowSeconds(), last_cpu = ThreadCpuSeconds();
   for (std::size_t k = 0; k < row.ticks_planned; ++k) {
     const double release = t0 + static_cast<double>(k) * period;
     const Eigen::Isometry3d X_LU = trajectory.At(static_cast<double>(k) * period);
@@ -48,13 +50,14 @@ HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double ma
     const double done = NowSeconds(), cpu1 = ThreadCpuSeconds();
     cpu_us.push_back(1e6 * (cpu1 - cpu0));
     latency_us.push_back(1e6 * (done - now));
-    const double off_cpu = std::max(0.0, (done - window_wall) - (cpu1 - window_cpu));
-    row.off_cpu_max_us = std::max(row.off_cpu_max_us, 1e6 * off_cpu);
-    window_wall = done;
-    window_cpu = cpu1;
+    row.off_cpu_max_us =
+        std::max(row.off_cpu_max_us, 1e6 * ((done - last_wall) - (cpu1 - last_cpu)));
+    last_wall = done;
+    last_cpu = cpu1;
+    unstalled_done = UnstalledDone(unstalled_done, release, cpu1 - cpu0);
     if (done > release + period) {
       ++row.misses;
-      if (MissIsAStall(release, period, done, off_cpu)) ++row.misses_stalled;
+      if (unstalled_done <= release + period) ++row.misses_stalled;
     }
     ++row.ticks;
     if (done > stop) break;
@@ -170,8 +173,8 @@ void AddFclTickRows(const BenchCase& bc, const HapticTrajectory& trajectory,
 
 }  // namespace
 
-bool MissIsAStall(double release_s, double period_s, double done_s, double off_cpu_s) {
-  return done_s - off_cpu_s <= release_s + period_s;
+double UnstalledDone(double unstalled_done_s, double release_s, double query_cpu_s) {
+  return std::max(unstalled_done_s, release_s) + query_cpu_s;
 }
 
 std::vector<HapticRow> RunHaptic(const BenchCase& bc, const HapticOptions& options) {
