@@ -575,10 +575,10 @@ void AddVoxelCharts(double v, RateCharts* charts) {
 void AddByVoxelCharts(RateCharts* charts) {
   for (const char* query : {"boolean", "oracle-subvoxel"}) {
     const bool boolean = query == std::string("boolean");
-    LineChart c =
-        charts->Chart(std::string(boolean ? "Boolean query (explicit IST)" : "Sub-voxel oracle") +
-                      " by voxel size, against FCL" +
-                      (!boolean && charts->HasOpenVdb() ? " and OpenVDB (same colour, dashed)" : ""));
+    LineChart c = charts->Chart(
+        std::string(boolean ? "Boolean query (explicit IST)" : "Sub-voxel oracle") +
+        " by voxel size, against FCL" +
+        (!boolean && charts->HasOpenVdb() ? " and OpenVDB (same colour, dashed)" : ""));
     int color = 0;
     for (const double v : charts->voxels) {
       c.series.push_back(RateSeries(charts->rows, charts->offsets, "IST " + Fixed(v, 2) + " mm",
@@ -619,7 +619,8 @@ namespace {
 void SummarizeBuilds(const std::vector<BenchRow>& rows, std::ostringstream* s) {
   double fcl_obbrss_us = std::numeric_limits<double>::quiet_NaN();
   for (const BenchRow& r : rows) {
-    if (r.method == "fcl" && r.variant == "obbrss" && r.query == "build") fcl_obbrss_us = r.us.median;
+    if (r.method == "fcl" && r.variant == "obbrss" && r.query == "build")
+      fcl_obbrss_us = r.us.median;
   }
   bool header = false;
   for (const BenchRow& r : rows) {

@@ -41,10 +41,10 @@ struct BenchOptions {
   /// are treated alike, and the speedups come from the merged medians).
   int rounds = 3;
   std::uint32_t seed = 1;
-  double delta_mm = 0.1;        ///< contact band of the pairs query and the oracle
-  double jitter_deg = 0.2;      ///< rotation jitter about the upper's centroid, at most
-  double jitter_mm = 0.05;      ///< translation jitter across the axis, at most
-  bool fcl = true;              ///< also time FCL (when built with it)
+  double delta_mm = 0.1;    ///< contact band of the pairs query and the oracle
+  double jitter_deg = 0.2;  ///< rotation jitter about the upper's centroid, at most
+  double jitter_mm = 0.05;  ///< translation jitter across the axis, at most
+  bool fcl = true;          ///< also time FCL (when built with it)
   /// Also time OpenVDB (when built with it): per voxel size, a narrow-band level set of the
   /// lower jaw (OpenVdbBandVoxels wide) and its trilinear samples at the oracle's upper samples.
   bool openvdb = true;

@@ -37,8 +37,8 @@ void CheckMesh(const io::TriangleMesh& mesh) {
   }
 }
 
-using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor,
-                                            openvdb::tools::BoxSampler>;
+using Sampler =
+    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
 
 }  // namespace
 

@@ -140,7 +140,8 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
   EXPECT_NE(ReadFileText(tmp / "out" / "bench-summary.txt").find("cores"), std::string::npos);
   // OpenVDB's rows are there by default when the binary has it (their content: the next test).
   EXPECT_EQ(keys.count("openvdb,levelset,0.800,build,,grid"), kBuiltWithOpenVdb ? 1u : 0u);
-  EXPECT_EQ(keys.count("openvdb,levelset,0.400,oracle-subvoxel,0.000,"), kBuiltWithOpenVdb ? 1u : 0u);
+  EXPECT_EQ(keys.count("openvdb,levelset,0.400,oracle-subvoxel,0.000,"),
+            kBuiltWithOpenVdb ? 1u : 0u);
 }
 
 // The OpenVDB peer: per voxel size its level-set build, and per offset its trilinear samples of
@@ -210,10 +211,10 @@ TEST(BenchCommandTest, OpenVdbRowsSampleTheOracleSamplesAndCountAlike) {
   EXPECT_NE(summary.find("openvdb levelset 0.40mm grid"), std::string::npos) << summary;
   EXPECT_GT(PngFileSize(tmp / "out" / "oracle-0.40mm.png").first, 400);
 
-  const CommandRun without =
-      Occlude("bench --synthetic 5000 --voxel 0.8 --reps 1 --rounds 1 --offsets 0 --no-fcl "
-              "--no-openvdb --out " +
-              (tmp / "without").string());
+  const CommandRun without = Occlude(
+      "bench --synthetic 5000 --voxel 0.8 --reps 1 --rounds 1 --offsets 0 --no-fcl "
+      "--no-openvdb --out " +
+      (tmp / "without").string());
   ASSERT_EQ(without.exit_code, 0) << without.output;
   for (const auto& row : ReadCsvRows(tmp / "without" / "bench.csv")) {
     EXPECT_NE(row.at("method"), "openvdb");
