@@ -138,6 +138,8 @@ void AddFclRows(const BenchCase& bc, FclBv bv, const BenchOptions& options, cons
   build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
   build.bytes = peer.approx_bytes();
   rows->push_back(build);
+  Log(options, "FCL " + variant + ": built in " + Fixed(peer.build_seconds(), 2) + " s (" +
+                   std::to_string(peer.approx_bytes() >> 20) + " MB); timing the sweep");
   for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
     AddFclOffsetRows(peer, bv, variant, options.offsets_mm[k], poses.at[k], poses.slow_reps, rows,
                      fcl_median);
