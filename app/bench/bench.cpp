@@ -558,9 +558,11 @@ void AddVoxelCharts(double v, RateCharts* charts) {
     }
     charts->Emit(std::string(query) + "-" + tag + ".png", c);
   }
-  LineChart c = charts->Chart("Contact oracle at " + vs +
-                              " mm voxels (contacts within the band + penetration)" +
-                              (charts->HasOpenVdb() ? ", against FCL and OpenVDB" : ""));
+  // (The title's width: with OpenVDB, the band's words give way to the peers' names.)
+  LineChart c =
+      charts->Chart("Contact oracle at " + vs + " mm voxels " +
+                    (charts->HasOpenVdb() ? "(contacts + penetration), against FCL and OpenVDB"
+                                          : "(contacts within the band + penetration)"));
   int color = 0;
   for (const char* query : {"oracle-voxel", "oracle-subvoxel", "oracle-exact"}) {
     c.series.push_back(RateSeries(rows, charts->offsets, std::string("IST ") + query, false,
@@ -569,7 +571,7 @@ void AddVoxelCharts(double v, RateCharts* charts) {
                                   }));
   }
   charts->AddFcl(&c, {{"obbrss", "collide-all"}, {"obbrss", "distance"}});
-  charts->AddOpenVdb(&c, v, "OpenVDB level set, trilinear samples", 8);
+  charts->AddOpenVdb(&c, v, "OpenVDB level set", 8);
   charts->Emit("oracle-" + tag + ".png", c);
 }
 
