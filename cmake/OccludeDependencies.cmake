@@ -90,3 +90,44 @@ else()
   set(OCCLUDE_HAVE_FCL OFF)
   message(STATUS "occlude: FCL not found (optional, apt-get install libfcl-dev): bench runs without the peer")
 endif()
+
+# OpenVDB: the second peer of `occlude bench` (a sparse narrow-band level set), optional and
+# benchmark-only like FCL. Found directly, not through find_package(OpenVDB): Debian's
+# FindOpenVDB.cmake insists on Boost iostreams and stops configuration even when asked QUIET.
+# OpenVDB 10's headers also include oneTBB's and a few Boost headers (libboost-dev is not a
+# dependency of libopenvdb-dev), and Debian's build stores half floats as Imath's (its inline
+# conversions need libImath at link time; libimath-dev is a dependency), so all are checked.
+find_path(OCCLUDE_OPENVDB_INCLUDE openvdb/openvdb.h)
+find_library(OCCLUDE_OPENVDB_LIBRARY openvdb)
+find_path(OCCLUDE_BOOST_INCLUDE boost/numeric/conversion/conversion_traits.hpp)
+find_library(OCCLUDE_IMATH_LIBRARY NAMES Imath Imath-3_1)
+find_package(TBB QUIET CONFIG)
+set(OCCLUDE_HAVE_OPENVDB OFF)
+if(OCCLUDE_OPENVDB_INCLUDE AND OCCLUDE_OPENVDB_LIBRARY AND OCCLUDE_BOOST_INCLUDE
+   AND OCCLUDE_IMATH_LIBRARY AND TARGET TBB::tbb)
+  add_library(occlude_openvdb INTERFACE)
+  target_include_directories(occlude_openvdb SYSTEM INTERFACE
+    ${OCCLUDE_OPENVDB_INCLUDE} ${OCCLUDE_BOOST_INCLUDE})
+  target_link_libraries(occlude_openvdb INTERFACE
+    ${OCCLUDE_OPENVDB_LIBRARY} ${OCCLUDE_IMATH_LIBRARY} TBB::tbb)
+  add_library(occlude::openvdb ALIAS occlude_openvdb)
+  set(OCCLUDE_HAVE_OPENVDB ON)
+  message(STATUS "occlude: OpenVDB found: the bench command compares against its level sets")
+else()
+  set(missing "")
+  if(NOT OCCLUDE_OPENVDB_INCLUDE OR NOT OCCLUDE_OPENVDB_LIBRARY)
+    list(APPEND missing "OpenVDB")
+  endif()
+  if(NOT OCCLUDE_IMATH_LIBRARY)
+    list(APPEND missing "Imath")
+  endif()
+  if(NOT OCCLUDE_BOOST_INCLUDE)
+    list(APPEND missing "Boost headers")
+  endif()
+  if(NOT TARGET TBB::tbb)
+    list(APPEND missing "oneTBB")
+  endif()
+  list(JOIN missing ", " missing)
+  message(STATUS "occlude: OpenVDB peer off (${missing} not found; optional, "
+                 "apt-get install libopenvdb-dev libboost-dev): bench runs without it")
+endif()

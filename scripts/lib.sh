@@ -4,13 +4,16 @@
 set -euo pipefail
 OCCLUDE_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
-# Required to build and test, plus FCL (optional peer for `occlude bench`).
+# Required to build and test, plus the optional peers of `occlude bench`: FCL, and OpenVDB
+# (whose headers also need Boost's, which libopenvdb-dev does not pull in). The peers are here,
+# not in the test lane's list, so that a build/ configured by scripts/demo and then tested by
+# scripts/test has them too (it is not configured again).
 OCCLUDE_PACKAGES=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libnlopt-cxx-dev libceres-dev libassimp-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libopenvdb-dev libboost-dev
   libjs-three
 )
 # The test lane only: headless Chromium for the viewer's browser tests (app_viewer_tests;

@@ -1,6 +1,7 @@
 // The occlusal-axis benchmark of `occlude bench` (see bench.h).
 #include "bench/bench.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -13,6 +14,7 @@
 #include "base/user_error.h"
 #include "bench/bench_poses_internal.h"
 #include "bench/fcl_peer.h"
+#include "bench/openvdb_peer.h"
 #include "chart/chart.h"
 #include "occlude/collision/collide.h"
 #include "occlude/collision/oracle.h"
@@ -63,6 +65,13 @@ collision::OracleOptions OracleOptionsFor(double voxel_mm) {
   // give every voxel a few samples.
   options.sample_spacing_mm = std::min(0.3, 1.5 * voxel_mm);
   return options;
+}
+
+int OpenVdbBandVoxels(const collision::OracleOptions& oracle,
+                      const collision::OracleRequest& request) {
+  const double reach = std::max(request.contact_band_mm, request.penetration_search_mm);
+  const int covering = static_cast<int>(std::ceil(reach / oracle.voxel_size_mm + 1e-6));
+  return std::max({covering, oracle.sdf_dilation_voxels, 1});
 }
 
 namespace {
@@ -129,6 +138,8 @@ void AddFclRows(const BenchCase& bc, FclBv bv, const BenchOptions& options, cons
   build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
   build.bytes = peer.approx_bytes();
   rows->push_back(build);
+  Log(options, "FCL " + variant + ": built in " + Fixed(peer.build_seconds(), 2) + " s (" +
+                   std::to_string(peer.approx_bytes() >> 20) + " MB); timing the sweep");
   for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
     AddFclOffsetRows(peer, bv, variant, options.offsets_mm[k], poses.at[k], poses.slow_reps, rows,
                      fcl_median);
@@ -238,12 +249,65 @@ void AddOracleRows(const collision::JawOracle& oracle, double voxel, double offs
     row.pairs = result.contact_samples;
     row.min_distance_mm = result.min_distance_mm;
     row.max_penetration_mm = result.max_penetration_mm;
+    row.contact_area_mm2 = result.contact_area_mm2;
+    row.penetration_area_mm2 = result.penetration_area_mm2;
     SetSpeedup(&row, "obbrss:collide-all", fcl_median);
     rows->push_back(row);
   }
 }
 
-// Every IST row of one voxel size: the oracle (and its trees) built once, then every offset.
+// OpenVDB's rows of one voxel size: the narrow-band level set of the lower jaw (its build),
+// then, at every offset, the sub-voxel oracle's work done OpenVDB's way: every upper sample of
+// `oracle` placed by the pose and sampled trilinearly, counted as the oracle counts (the
+// contact band of the bench, the penetration search plus the oracle's field band), at the same
+// poses as the oracle's sub-voxel rows.
+void AddOpenVdbRows(const BenchCase& bc, const collision::JawOracle& oracle, double voxel,
+                    const BenchOptions& options, const RoundPoses& poses,
+                    std::vector<BenchRow>* rows) {
+  collision::OracleRequest request;
+  request.contact_band_mm = options.delta_mm;
+  const int half_width = OpenVdbBandVoxels(OracleOptionsFor(voxel), request);
+  Log(options, "OpenVDB " + Fixed(voxel, 2) + " mm: building the level set (half width " +
+                   std::to_string(half_width) + " voxels)");
+  const OpenVdbPeer peer(*bc.lower_L, voxel, half_width);
+  BenchRow build = MakeRow("openvdb", "levelset", "grid");
+  build.voxel_mm = voxel;
+  build.query = "build";
+  build.reps = 1;
+  build.us = {1e6 * peer.build_seconds(), 1e6 * peer.build_seconds()};
+  build.bytes = peer.approx_bytes();
+  rows->push_back(build);
+  Log(options, "OpenVDB " + Fixed(voxel, 2) + " mm: built in " + Fixed(peer.build_seconds(), 2) +
+                   " s (" + std::to_string(peer.approx_bytes() >> 20) + " MB, " +
+                   std::to_string(peer.active_voxels()) + " active voxels); sampling " +
+                   std::to_string(oracle.num_samples()) + " samples per pose");
+  const OpenVdbCountRule rule{request.contact_band_mm,
+                              request.penetration_search_mm + oracle.lower_sdf().band_mm()};
+  const std::vector<Eigen::Vector3f>& samples_U = oracle.samples_U();
+  const std::vector<float>& areas = oracle.sample_areas_mm2();
+  for (std::size_t k = 0; k < options.offsets_mm.size(); ++k) {
+    const std::vector<Eigen::Isometry3d>& at = poses.at[k];
+    BenchRow row = MakeRow("openvdb", "levelset", "");
+    row.voxel_mm = voxel;
+    row.query = "oracle-subvoxel";
+    row.offset_mm = options.offsets_mm[k];
+    row.reps = static_cast<int>(at.size());
+    row.us = TimePoses(at, at.size(), [&](const Eigen::Isometry3d& X) {
+      (void)peer.Sample(samples_U, areas, X, rule);
+    });
+    const OpenVdbSampleResult r = peer.Sample(samples_U, areas, at[0], rule);
+    row.pairs = r.contact_samples;
+    row.min_distance_mm = r.min_distance_mm;
+    row.max_penetration_mm = r.max_penetration_mm;
+    row.contact_area_mm2 = r.contact_area_mm2;
+    row.penetration_area_mm2 = r.penetration_area_mm2;
+    rows->push_back(row);
+  }
+  Log(options, "OpenVDB " + Fixed(voxel, 2) + " mm: done");
+}
+
+// Every IST row of one voxel size: the oracle (and its trees) built once, then every offset;
+// then OpenVDB's rows on the oracle's samples.
 void AddIstRows(const BenchCase& bc, double voxel, const BenchOptions& options,
                 const RoundPoses& poses, const FclMedians& fcl_median,
                 std::vector<BenchRow>* rows) {
@@ -260,10 +324,13 @@ void AddIstRows(const BenchCase& bc, double voxel, const BenchOptions& options,
     AddOracleRows(oracle, voxel, offset, poses.at[k], options, poses, fcl_median, rows);
   }
   Log(options, "IST " + Fixed(voxel, 2) + " mm: done");
+  if (options.openvdb && OpenVdbPeer::Available()) {
+    AddOpenVdbRows(bc, oracle, voxel, options, poses, rows);
+  }
 }
 
 // One whole sweep: FCL first (its rows are the reference of the IST speedups), then IST per
-// voxel size.
+// voxel size, each followed by OpenVDB at that size.
 std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& options) {
   std::vector<BenchRow> rows;
   RoundPoses poses;
@@ -281,6 +348,36 @@ std::vector<BenchRow> RunBenchRound(const BenchCase& bc, const BenchOptions& opt
     AddIstRows(bc, voxel, options, poses, fcl_median, &rows);
   }
   return rows;
+}
+
+// The key of a row among those of its voxel size: "levelset:oracle-subvoxel@0.200@-0.100", or
+// "...@build" for a build row.
+std::string PeerKey(const std::string& reference, double voxel, double offset) {
+  return reference + "@" + Fixed(voxel, 4) + "@" +
+         (std::isfinite(offset) ? Fixed(offset, 4) : std::string("build"));
+}
+
+// Speedups against OpenVDB from the merged medians, OpenVDB's median (or build time) over the
+// IST's at the same voxel size (and offset): the sub-voxel oracle against the level set's
+// samples, the oracle's build against the level set's build.
+void SetOpenVdbSpeedups(std::vector<BenchRow>* rows) {
+  std::map<std::string, double> openvdb_median;
+  for (const BenchRow& r : *rows) {
+    if (r.method == "openvdb")
+      openvdb_median[PeerKey(r.variant + ":" + r.query, r.voxel_mm, r.offset_mm)] = r.us.median;
+  }
+  if (openvdb_median.empty()) return;
+  for (BenchRow& r : *rows) {
+    if (r.method != "ist" || r.variant != "explicit") continue;
+    std::string reference;
+    if (r.query == "oracle-subvoxel") reference = "levelset:oracle-subvoxel";
+    if (r.query == "build" && r.structure == "oracle") reference = "levelset:build";
+    if (reference.empty()) continue;
+    const auto it = openvdb_median.find(PeerKey(reference, r.voxel_mm, r.offset_mm));
+    if (it == openvdb_median.end()) continue;
+    r.openvdb_reference = reference;
+    if (r.us.median > 0) r.speedup_openvdb = it->second / r.us.median;
+  }
 }
 
 }  // namespace
@@ -312,6 +409,7 @@ std::vector<BenchRow> RunBench(const BenchCase& bc, const BenchOptions& options)
     const auto it = fcl_median.find({r.fcl_reference, r.offset_mm});
     if (it != fcl_median.end() && r.us.median > 0) r.speedup = it->second / r.us.median;
   }
+  SetOpenVdbSpeedups(&rows);
   return rows;
 }
 
@@ -319,7 +417,8 @@ std::string BenchCsv(const std::vector<BenchRow>& rows) {
   std::ostringstream csv;
   csv << "method,variant,voxel_mm,query,offset_mm,median_us,max_us,rate_hz,pairs,bytes,structure,"
          "reps,"
-         "min_distance_mm,max_penetration_mm,fcl_reference,speedup_vs_fcl\n";
+         "min_distance_mm,max_penetration_mm,fcl_reference,speedup_vs_fcl,openvdb_reference,"
+         "speedup_vs_openvdb,contact_area_mm2,penetration_area_mm2\n";
   auto num = [](double v, int digits) {
     return std::isfinite(v) ? Fixed(v, digits) : std::string();
   };
@@ -331,7 +430,9 @@ std::string BenchCsv(const std::vector<BenchRow>& rows) {
         << (build ? std::string() : std::to_string(r.pairs)) << ','
         << (build ? std::to_string(r.bytes) : std::string()) << ',' << r.structure << ',' << r.reps
         << ',' << num(r.min_distance_mm, 5) << ',' << num(r.max_penetration_mm, 5) << ','
-        << r.fcl_reference << ',' << num(r.speedup, 2) << '\n';
+        << r.fcl_reference << ',' << num(r.speedup, 2) << ',' << r.openvdb_reference << ','
+        << num(r.speedup_openvdb, 2) << ',' << num(r.contact_area_mm2, 4) << ','
+        << num(r.penetration_area_mm2, 4) << '\n';
   }
   return csv.str();
 }
@@ -410,6 +511,19 @@ struct RateCharts {
     }
   }
 
+  // OpenVDB's sampled level set at voxel size v (dashed), when it has points.
+  void AddOpenVdb(LineChart* c, double v, const std::string& name, int color) const {
+    ChartSeries s = RateSeries(rows, offsets, name, true, color, [&](const BenchRow& r) {
+      return r.method == "openvdb" && r.query == "oracle-subvoxel" && r.voxel_mm == v;
+    });
+    if (!s.x.empty()) c->series.push_back(s);
+  }
+
+  bool HasOpenVdb() const {
+    return std::any_of(rows.begin(), rows.end(),
+                       [](const BenchRow& r) { return r.method == "openvdb"; });
+  }
+
   // Renders the chart when any series has a point.
   void Emit(const std::string& file, const LineChart& c) {
     bool any = false;
@@ -444,8 +558,11 @@ void AddVoxelCharts(double v, RateCharts* charts) {
     }
     charts->Emit(std::string(query) + "-" + tag + ".png", c);
   }
-  LineChart c = charts->Chart("Contact oracle at " + vs +
-                              " mm voxels (contacts within the band + penetration)");
+  // (The title's width: with OpenVDB, the band's words give way to the peers' names.)
+  LineChart c =
+      charts->Chart("Contact oracle at " + vs + " mm voxels " +
+                    (charts->HasOpenVdb() ? "(contacts + penetration), against FCL and OpenVDB"
+                                          : "(contacts within the band + penetration)"));
   int color = 0;
   for (const char* query : {"oracle-voxel", "oracle-subvoxel", "oracle-exact"}) {
     c.series.push_back(RateSeries(rows, charts->offsets, std::string("IST ") + query, false,
@@ -454,6 +571,7 @@ void AddVoxelCharts(double v, RateCharts* charts) {
                                   }));
   }
   charts->AddFcl(&c, {{"obbrss", "collide-all"}, {"obbrss", "distance"}});
+  charts->AddOpenVdb(&c, v, "OpenVDB level set", 8);
   charts->Emit("oracle-" + tag + ".png", c);
 }
 
@@ -461,9 +579,10 @@ void AddVoxelCharts(double v, RateCharts* charts) {
 void AddByVoxelCharts(RateCharts* charts) {
   for (const char* query : {"boolean", "oracle-subvoxel"}) {
     const bool boolean = query == std::string("boolean");
-    LineChart c =
-        charts->Chart(std::string(boolean ? "Boolean query (explicit IST)" : "Sub-voxel oracle") +
-                      " by voxel size, against FCL");
+    LineChart c = charts->Chart(
+        std::string(boolean ? "Boolean query (explicit IST)" : "Sub-voxel oracle") +
+        " by voxel size, against FCL" +
+        (!boolean && charts->HasOpenVdb() ? " and OpenVDB (same colour, dashed)" : ""));
     int color = 0;
     for (const double v : charts->voxels) {
       c.series.push_back(RateSeries(charts->rows, charts->offsets, "IST " + Fixed(v, 2) + " mm",
@@ -476,6 +595,10 @@ void AddByVoxelCharts(RateCharts* charts) {
       charts->AddFcl(&c, {{"obb", "boolean"}});
     } else {
       charts->AddFcl(&c, {{"obbrss", "collide-all"}});
+      color = 0;
+      for (const double v : charts->voxels) {
+        charts->AddOpenVdb(&c, v, "OpenVDB " + Fixed(v, 2) + " mm", color++);
+      }
     }
     charts->Emit(std::string(query) + "-by-voxel.png", c);
   }
@@ -491,12 +614,56 @@ std::vector<std::pair<std::string, std::string>> BenchCharts(const std::vector<B
   return std::move(charts.files);
 }
 
+namespace {
+
+// The builds: the IST oracle's (both jaws: trees, the lower's distance field and bounds, the
+// upper's samples), FCL's (both jaws' BVH trees) and OpenVDB's (the lower jaw's level set), wall
+// time; the oracle's line with the peers' build times over its own (FCL's OBBRSS, OpenVDB's at
+// the same voxel size).
+void SummarizeBuilds(const std::vector<BenchRow>& rows, std::ostringstream* s) {
+  double fcl_obbrss_us = std::numeric_limits<double>::quiet_NaN();
+  for (const BenchRow& r : rows) {
+    if (r.method == "fcl" && r.variant == "obbrss" && r.query == "build")
+      fcl_obbrss_us = r.us.median;
+  }
+  bool header = false;
+  for (const BenchRow& r : rows) {
+    if (r.query != "build") continue;
+    const bool oracle = r.method == "ist" && r.structure == "oracle";
+    if (!oracle && r.method == "ist") continue;  // the trees alone: in the CSV
+    if (!header) {
+      *s << "builds, wall time (IST oracle: both jaws; FCL: both jaws' BVH trees; OpenVDB: the "
+            "lower jaw's level set), and the peers' build time over the oracle's\n";
+      header = true;
+    }
+    const std::string key =
+        r.method + " " + r.variant + " " +
+        (std::isfinite(r.voxel_mm) ? Fixed(r.voxel_mm, 2) + "mm " : std::string()) + r.structure;
+    char line[256];
+    std::snprintf(line, sizeof line, "  %-40s %10.3f s, %6.1f MB", key.c_str(), 1e-6 * r.us.median,
+                  static_cast<double>(r.bytes) / (1 << 20));
+    *s << line;
+    if (oracle && std::isfinite(fcl_obbrss_us) && r.us.median > 0) {
+      std::snprintf(line, sizeof line, "   FCL obbrss %.3gx", fcl_obbrss_us / r.us.median);
+      *s << line;
+    }
+    if (oracle && std::isfinite(r.speedup_openvdb)) {
+      std::snprintf(line, sizeof line, "   OpenVDB levelset %.3gx", r.speedup_openvdb);
+      *s << line;
+    }
+    *s << "\n";
+  }
+}
+
+}  // namespace
+
 std::string BenchSummary(const std::vector<BenchRow>& rows) {
   // Worst median over the offsets, per method/variant/voxel/query; and the
-  // smallest speedup over FCL.
+  // smallest speedups over FCL and OpenVDB.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   struct Worst {
-    double us = 0.0, offset = 0.0, min_speedup = std::numeric_limits<double>::infinity();
-    std::string reference;
+    double us = 0.0, offset = 0.0, min_speedup = kInf, min_speedup_openvdb = kInf;
+    std::string reference, openvdb_reference;
   };
   std::map<std::string, Worst> worst;
   std::vector<std::string> order;
@@ -515,10 +682,14 @@ std::string BenchSummary(const std::vector<BenchRow>& rows) {
       w.min_speedup = std::min(w.min_speedup, r.speedup);
       w.reference = r.fcl_reference;
     }
+    if (std::isfinite(r.speedup_openvdb)) {
+      w.min_speedup_openvdb = std::min(w.min_speedup_openvdb, r.speedup_openvdb);
+      w.openvdb_reference = r.openvdb_reference;
+    }
   }
   std::ostringstream s;
   s << "worst median over the sweep (thread CPU us), and the smallest speedup over the matching "
-       "FCL query\n";
+       "FCL query (and OpenVDB's, where it ran)\n";
   for (const std::string& key : order) {
     const Worst& w = worst[key];
     char line[256];
@@ -529,8 +700,14 @@ std::string BenchSummary(const std::vector<BenchRow>& rows) {
       std::snprintf(ratio, sizeof ratio, "%.3g", w.min_speedup);
       s << "   >= " << ratio << "x FCL " << w.reference;
     }
+    if (std::isfinite(w.min_speedup_openvdb)) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%.3g", w.min_speedup_openvdb);
+      s << "   >= " << ratio << "x OpenVDB " << w.openvdb_reference;
+    }
     s << "\n";
   }
+  SummarizeBuilds(rows, &s);
   return s.str();
 }
 

@@ -1,6 +1,7 @@
 // `occlude bench`: the paper's experiment (Le Jeune et al., Fig. 10) on a jaw
-// pair, with the general-purpose peer FCL timed on the same meshes and poses in
-// the same run, and the haptic loop that makes the 1 kHz requirement measurable.
+// pair, with the general-purpose peer FCL and OpenVDB's sparse level sets timed on
+// the same meshes and poses in the same run, and the haptic loop that makes the
+// 1 kHz requirement measurable.
 //
 // Sweep: the lower jaw L is fixed; the upper jaw is moved along the occlusal axis
 // from the reference bite (offset 0; offset > 0 opens it) with a small seeded
@@ -40,10 +41,13 @@ struct BenchOptions {
   /// are treated alike, and the speedups come from the merged medians).
   int rounds = 3;
   std::uint32_t seed = 1;
-  double delta_mm = 0.1;        ///< contact band of the pairs query and the oracle
-  double jitter_deg = 0.2;      ///< rotation jitter about the upper's centroid, at most
-  double jitter_mm = 0.05;      ///< translation jitter across the axis, at most
-  bool fcl = true;              ///< also time FCL (when built with it)
+  double delta_mm = 0.1;    ///< contact band of the pairs query and the oracle
+  double jitter_deg = 0.2;  ///< rotation jitter about the upper's centroid, at most
+  double jitter_mm = 0.05;  ///< translation jitter across the axis, at most
+  bool fcl = true;          ///< also time FCL (when built with it)
+  /// Also time OpenVDB (when built with it): per voxel size, a narrow-band level set of the
+  /// lower jaw (OpenVdbBandVoxels wide) and its trilinear samples at the oracle's upper samples.
+  bool openvdb = true;
   std::ostream* log = nullptr;  ///< progress lines
 };
 
@@ -54,12 +58,12 @@ inline constexpr collision::SphereMode kSphereModes[] = {collision::SphereMode::
 
 /// One CSV row. Build rows: median_us = max_us = wall build time, bytes = memory.
 struct BenchRow {
-  std::string method;     ///< "ist" or "fcl"
-  std::string variant;    ///< simple, optimized, explicit, obb, obbrss
-  std::string structure;  ///< build rows: "trees" or "oracle"; query rows: ""
+  std::string method;     ///< "ist", "fcl" or "openvdb"
+  std::string variant;    ///< simple, optimized, explicit, obb, obbrss, levelset
+  std::string structure;  ///< build rows: "trees", "oracle" or "grid" (OpenVDB); query rows: ""
   double voxel_mm = std::numeric_limits<double>::quiet_NaN();  ///< NaN for FCL
   std::string query;  ///< build, boolean, pairs, oracle-voxel, oracle-subvoxel, oracle-exact,
-                      ///< collide-all, distance
+                      ///< collide-all, distance (OpenVDB: build, oracle-subvoxel)
   double offset_mm = std::numeric_limits<double>::quiet_NaN();  ///< NaN for build rows
   int reps = 0;
   Summary us;  ///< median and max microseconds per query
@@ -68,13 +72,30 @@ struct BenchRow {
   std::size_t bytes = 0;
   double min_distance_mm = std::numeric_limits<double>::quiet_NaN();     ///< distance / oracle rows
   double max_penetration_mm = std::numeric_limits<double>::quiet_NaN();  ///< oracle rows
+  /// Oracle rows (IST and OpenVDB), the median rep's pose (first): contact and penetration area.
+  double contact_area_mm2 = std::numeric_limits<double>::quiet_NaN();
+  double penetration_area_mm2 = std::numeric_limits<double>::quiet_NaN();
   std::string fcl_reference;  ///< the matching FCL query ("obb:boolean"), IST rows
   double speedup = std::numeric_limits<double>::quiet_NaN();  ///< FCL median / IST median
+  /// The matching OpenVDB row at the same voxel size ("levelset:oracle-subvoxel", or
+  /// "levelset:build" for the oracle's build), IST rows; speedup_openvdb = its median / ours
+  /// (the same definition as `speedup`: the peer's time over the IST's).
+  std::string openvdb_reference;
+  double speedup_openvdb = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The oracle settings the benchmarks use at a voxel size (sample spacing
 /// min(0.3, 1.5 * voxel) mm).
 collision::OracleOptions OracleOptionsFor(double voxel_mm);
+
+/// The half width, in voxels, of OpenVDB's level set beside an oracle built with `oracle` and
+/// queried with `request`: as wide as the oracle's reach (the contact band or the penetration
+/// search, whichever is larger; strictly wider, as OpenVDB's band is open), and never narrower
+/// than the oracle's own field band (sdf_dilation_voxels), so that trilinear samples near the
+/// reach read no clamped background value the oracle's field would not. 0.2 mm voxels, band
+/// 0.1 mm, search 0.3 mm: max(ceil(1.5), 2) = 2 voxels (0.4 mm).
+int OpenVdbBandVoxels(const collision::OracleOptions& oracle,
+                      const collision::OracleRequest& request);
 
 std::vector<BenchRow> RunBench(const BenchCase& bench_case, const BenchOptions& options);
 std::string BenchCsv(const std::vector<BenchRow>& rows);

@@ -1,5 +1,5 @@
 // `occlude bench`: the paper's query-rate experiment on a jaw pair, with FCL
-// side by side (CSV + PNG charts); `--haptic`, the fixed-period loop;
+// and OpenVDB side by side (CSV + PNG charts); `--haptic`, the fixed-period loop;
 // `--paper`, the paper's result figures (bench_paper.h); `--accuracy`, speed
 // against accuracy (bench_accuracy.h). This file holds the options and the
 // dispatch; each mode's work lives in its own files.
@@ -14,6 +14,7 @@
 #include "bench/bench_inputs.h"
 #include "bench/bench_paper.h"
 #include "bench/fcl_peer.h"
+#include "bench/openvdb_peer.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "occlude/collision/oracle.h"
@@ -35,6 +36,7 @@ struct BenchArgs {
   std::string axis = "auto";
   double jitter_deg = 0.2, jitter_mm = 0.05;
   bool no_fcl = false;
+  bool no_openvdb = false;
   bool haptic = false;
   std::vector<double> periods = {1000.0, 100.0};
   double seconds = 2.0;
@@ -203,9 +205,14 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   options.jitter_deg = args.jitter_deg;
   options.jitter_mm = args.jitter_mm;
   options.fcl = !args.no_fcl;
+  options.openvdb = !args.no_openvdb;
   options.log = &std::cerr;
   if (options.fcl && !FclPeer::Available()) {
     std::cerr << "occlude: warning: built without FCL (libfcl-dev): the FCL rows are missing\n";
+  }
+  if (options.openvdb && !OpenVdbPeer::Available()) {
+    std::cerr << "occlude: warning: built without OpenVDB (libopenvdb-dev libboost-dev): the "
+                 "OpenVDB rows are missing\n";
   }
   const std::vector<BenchRow> rows = RunBench(bc, options);
   const std::string summary =
@@ -261,6 +268,8 @@ CLI::Option* AddCaseAndSweepOptions(CLI::App* cmd, BenchArgs* args) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 5.0));
   cmd->add_flag("--no-fcl", args->no_fcl, "Skip the FCL peer");
+  cmd->add_flag("--no-openvdb", args->no_openvdb,
+                "Skip the OpenVDB peer (the sweep's level-set build and samples)");
   return voxel_opt;
 }
 
@@ -332,7 +341,8 @@ void RunBenchMode(const BenchArgs& args, const Given& given) {
 void AddBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench",
-      "Time IST queries and the oracle against FCL along the occlusal axis (CSV + PNG charts)");
+      "Time IST queries and the oracle against FCL and OpenVDB along the occlusal axis (CSV + PNG "
+      "charts)");
   auto args = std::make_shared<BenchArgs>();
   auto* voxel_opt = AddCaseAndSweepOptions(cmd, args.get());
   AddHapticAndOutputOptions(cmd, args.get());

@@ -217,6 +217,17 @@ TEST(OracleSamplesTest, FineTrianglesAreMergedToTheSpacingKeepingAreaAndSurface)
   // (it crosses no sub-cell boundary in y), against 80,000 triangle centroids.
   EXPECT_LE(oracle.num_samples(), 1600u);
   EXPECT_GE(oracle.num_samples(), 1600u);
+  // The samples as the peers of `occlude bench` read them: points of the sheet in U, and
+  // areas adding up to the sheet's.
+  ASSERT_EQ(oracle.samples_U().size(), oracle.num_samples());
+  ASSERT_EQ(oracle.sample_areas_mm2().size(), oracle.num_samples());
+  double area = 0.0;
+  for (std::size_t i = 0; i < oracle.num_samples(); ++i) {
+    EXPECT_NEAR(oracle.samples_U()[i].y(), 0.01f, 1e-6f);
+    EXPECT_LE(oracle.samples_U()[i].head<3>().cwiseAbs().maxCoeff(), 2.0f + 1e-6f);
+    area += static_cast<double>(oracle.sample_areas_mm2()[i]);
+  }
+  EXPECT_NEAR(area, 16.0, 1e-3);
   for (AccuracyLevel level : {AccuracyLevel::kSubVoxel, AccuracyLevel::kExact}) {
     OracleRequest req;
     req.level = level;

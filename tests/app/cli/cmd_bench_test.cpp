@@ -30,6 +30,8 @@ namespace {
 
 // Whether the binary was built with the FCL peer (its rows are then expected).
 constexpr bool kBuiltWithFcl = OCCLUDE_BUILT_WITH_FCL;
+// Whether it was built with the OpenVDB peer.
+constexpr bool kBuiltWithOpenVdb = OCCLUDE_BUILT_WITH_OPENVDB;
 
 // --- the occlusal-axis sweep ----------------------------------------------------------------
 
@@ -136,6 +138,88 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
     EXPECT_GT(size.second, 300) << chart;
   }
   EXPECT_NE(ReadFileText(tmp / "out" / "bench-summary.txt").find("cores"), std::string::npos);
+  // OpenVDB's rows are there by default when the binary has it (their content: the next test).
+  EXPECT_EQ(keys.count("openvdb,levelset,0.800,build,,grid"), kBuiltWithOpenVdb ? 1u : 0u);
+  EXPECT_EQ(keys.count("openvdb,levelset,0.400,oracle-subvoxel,0.000,"),
+            kBuiltWithOpenVdb ? 1u : 0u);
+}
+
+// The OpenVDB peer: per voxel size its level-set build, and per offset its trilinear samples of
+// the oracle's own upper samples at the same poses, counted as the oracle counts; the sub-voxel
+// oracle's rows and the oracle's build row name it and carry OpenVDB's median over theirs.
+// --no-openvdb drops every row of it.
+TEST(BenchCommandTest, OpenVdbRowsSampleTheOracleSamplesAndCountAlike) {
+  if (!kBuiltWithOpenVdb) GTEST_SKIP() << "occlude was built without OpenVDB";
+  TempDir tmp;
+  const CommandRun r = Occlude(
+      "bench --synthetic 5000 --voxel 0.4 --reps 1 --rounds 1 --offsets 0.5,0,-0.1,-0.2 --no-fcl "
+      "--out " +
+      (tmp / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, CsvRow> ist, openvdb;  // by query and offset ("build" for the build)
+  for (const auto& row : ReadCsvRows(tmp / "out" / "bench.csv")) {
+    const std::string key = row.at("query") + "@" + row.at("offset_mm");
+    if (row.at("method") == "openvdb") {
+      EXPECT_EQ(row.at("variant"), "levelset");
+      EXPECT_EQ(row.at("voxel_mm"), "0.400");
+      EXPECT_TRUE(openvdb.emplace(key, row).second) << key;
+    }
+    if (row.at("method") == "ist" && row.at("variant") == "explicit" &&
+        (row.at("query") == "oracle-subvoxel" || row.at("structure") == "oracle")) {
+      ist.emplace(key, row);
+    }
+  }
+  ASSERT_EQ(openvdb.size(), 5u);  // the build and four offsets
+  ASSERT_TRUE(openvdb.count("build@"));
+  EXPECT_EQ(openvdb.at("build@").at("structure"), "grid");
+  EXPECT_GT(Value(openvdb.at("build@"), "bytes"), 0.0);
+  auto expect_speedup = [&](const std::string& key, const char* reference) {
+    const CsvRow& ours = ist.at(key);
+    EXPECT_EQ(ours.at("openvdb_reference"), reference) << key;
+    const double ratio = Value(openvdb.at(key), "median_us") / Value(ours, "median_us");
+    // Printed with 2 decimals (the medians too): equal within that rounding.
+    EXPECT_NEAR(Value(ours, "speedup_vs_openvdb"), ratio, 0.006 + 0.01 * ratio) << key;
+  };
+  expect_speedup("build@", "levelset:build");
+  for (const char* offset : {"0.500", "0.000", "-0.100", "-0.200"}) {
+    const std::string key = std::string("oracle-subvoxel@") + offset;
+    ASSERT_TRUE(openvdb.count(key) && ist.count(key)) << key;
+    expect_speedup(key, "levelset:oracle-subvoxel");
+    const CsvRow &a = ist.at(key), &b = openvdb.at(key);
+    // The same samples at the same (on-axis) pose, counted alike; the two distances differ by
+    // how each is interpolated: the oracle's field and OpenVDB's grid both hold exact distances
+    // at their corners, but on lattices offset from each other, and trilinear values between
+    // them err differently on the curved surface (up to a few hundredths of a mm at 0.4 mm
+    // voxels). Only samples within that error of the contact band's edges (0 and 0.1 mm) or of
+    // the surface can count differently: a few % of the contacts (3.9 % at the bite, measured).
+    // The samples near the surface may also swap contact for penetration: both areas are held
+    // to a share of the area near the surface (contact + penetration).
+    const double contacts = Value(a, "pairs");
+    const double near_mm2 = Value(a, "contact_area_mm2") + Value(a, "penetration_area_mm2");
+    EXPECT_NEAR(Value(b, "pairs"), contacts, 3.0 + 0.06 * contacts) << key;
+    EXPECT_NEAR(Value(b, "contact_area_mm2"), Value(a, "contact_area_mm2"), 0.1 + 0.06 * near_mm2)
+        << key;
+    EXPECT_NEAR(Value(b, "penetration_area_mm2"), Value(a, "penetration_area_mm2"),
+                0.1 + 0.06 * near_mm2)
+        << key;
+    EXPECT_NEAR(Value(b, "max_penetration_mm"), Value(a, "max_penetration_mm"), 0.04) << key;
+  }
+  EXPECT_GT(Value(ist.at("oracle-subvoxel@-0.200"), "pairs"), 100.0);  // the bite touches
+  EXPECT_EQ(ist.at("oracle-subvoxel@0.500").at("pairs"), "0");
+  const std::string summary = ReadFileText(tmp / "out" / "bench-summary.txt");
+  EXPECT_NE(summary.find("OpenVDB levelset:oracle-subvoxel"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("openvdb levelset 0.40mm grid"), std::string::npos) << summary;
+  EXPECT_GT(PngFileSize(tmp / "out" / "oracle-0.40mm.png").first, 400);
+
+  const CommandRun without = Occlude(
+      "bench --synthetic 5000 --voxel 0.8 --reps 1 --rounds 1 --offsets 0 --no-fcl "
+      "--no-openvdb --out " +
+      (tmp / "without").string());
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  for (const auto& row : ReadCsvRows(tmp / "without" / "bench.csv")) {
+    EXPECT_NE(row.at("method"), "openvdb");
+    EXPECT_TRUE(row.at("openvdb_reference").empty());
+  }
 }
 
 TEST(BenchCommandTest, HapticLoopReportsEveryTickAndThePercentiles) {

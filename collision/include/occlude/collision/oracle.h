@@ -168,6 +168,12 @@ class JawOracle {
   const NarrowBandSdf& lower_sdf() const { return sdf_; }
   const ArchFrame& arch() const { return arch_; }
   std::size_t num_samples() const { return sample_area_.size(); }
+  /// The upper samples' positions in U, mm, grouped by upper surface voxel (the order every
+  /// query evaluates them in); a pose X_LU places them in L (X_LU * p_U). For peers that
+  /// sample another distance field at exactly the oracle's points (`occlude bench`).
+  const std::vector<Eigen::Vector3f>& samples_U() const { return sample_p_U_; }
+  /// The upper surface area each sample stands for, mm^2 (parallel to samples_U()).
+  const std::vector<float>& sample_areas_mm2() const { return sample_area_; }
   double sample_spacing_mm() const { return options_.sample_spacing_mm; }
   double build_seconds() const { return build_seconds_; }
   std::size_t MemoryBytes() const;
