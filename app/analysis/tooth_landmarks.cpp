@@ -30,7 +30,7 @@ constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
 constexpr double kCanineCapMm = 0.2;
 constexpr double kCanineSliceMm = 0.4;
 constexpr double kCanineRidgeMm = 0.15;
-constexpr double kCanineEdgeCells = 2.0;  // a region top this close to its end: less sure
+constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
 constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
@@ -198,9 +198,7 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
   const auto h_of = [&](int c) { return map.height[static_cast<std::size_t>(c)]; };
   const double u_lo = box.u_mid + kCanineDistalShare * box.length;
   const double u_hi = box.u_mid + kCanineMesialShare * box.length;
-  const auto in_region = [&](int c) {
-    return map.Filled(c) && u_of(c) >= u_lo && u_of(c) <= u_hi;
-  };
+  const auto in_region = [&](int c) { return map.Filled(c) && u_of(c) >= u_lo && u_of(c) <= u_hi; };
   int top_cell = -1;
   for (int c = 0; c < cells; ++c) {
     if (in_region(c) && (top_cell < 0 || h_of(c) > h_of(top_cell))) top_cell = c;
