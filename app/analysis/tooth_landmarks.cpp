@@ -22,8 +22,15 @@ constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the
 constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
-// Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare].
+// Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare]. Its top there is a worn dome
+// whose single highest cell wanders along the flat crest: the tip is at the middle (along the
+// arch) of the region's cells within kCanineCapMm of its top, and across at the middle of the
+// cells of that slice (kCanineSliceMm either side) within kCanineRidgeMm of the slice's top.
 constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
+constexpr double kCanineCapMm = 0.2;
+constexpr double kCanineSliceMm = 0.4;
+constexpr double kCanineRidgeMm = 0.15;
+constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
 constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
@@ -53,8 +60,6 @@ constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
 
 std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   const bool upper = jaw == io::Jaw::kUpper;
-  if (position == 3)
-    return {{LandmarkType::kCuspTip, kCanineDistalShare, kCanineMesialShare, Side::kAny}};
   if (position == 4 || (position == 5 && upper)) {
     return {{LandmarkType::kBuccalCusp, -0.5, 0.5, Side::kBuccal},
             {LandmarkType::kLingualCusp, -0.5, 0.5, Side::kLingual}};
@@ -181,6 +186,49 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
     out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
                         "highest local maximum of the occlusal surface in the cusp's region"));
   }
+}
+
+// The canine's tip (kCanineCapMm above): the middle of its region's top along the arch, then
+// the middle of that slice's highest cells across it, as the surface point seen there. Less sure
+// when the region's top lies at its end (the crest rises on out of the region).
+void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const HeightMap& map = view.top;
+  const int cells = map.nx * map.ny;
+  const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
+  const auto h_of = [&](int c) { return map.height[static_cast<std::size_t>(c)]; };
+  const double u_lo = box.u_mid + kCanineDistalShare * box.length;
+  const double u_hi = box.u_mid + kCanineMesialShare * box.length;
+  const auto in_region = [&](int c) { return map.Filled(c) && u_of(c) >= u_lo && u_of(c) <= u_hi; };
+  int top_cell = -1;
+  for (int c = 0; c < cells; ++c) {
+    if (in_region(c) && (top_cell < 0 || h_of(c) > h_of(top_cell))) top_cell = c;
+  }
+  if (top_cell < 0) return;
+  double u_sum = 0.0;
+  int n = 0;
+  for (int c = 0; c < cells; ++c) {
+    if (in_region(c) && h_of(c) >= h_of(top_cell) - kCanineCapMm) u_sum += u_of(c), ++n;
+  }
+  const double u_tip = u_sum / n;
+  const auto in_slice = [&](int c) {
+    return map.Filled(c) && std::abs(u_of(c) - u_tip) <= kCanineSliceMm;
+  };
+  int slice_top = -1;
+  for (int c = 0; c < cells; ++c) {
+    if (in_slice(c) && (slice_top < 0 || h_of(c) > h_of(slice_top))) slice_top = c;
+  }
+  if (slice_top < 0) return;
+  Eigen::Vector2d q = Eigen::Vector2d::Zero();
+  int m = 0;
+  for (int c = 0; c < cells; ++c) {
+    if (in_slice(c) && h_of(c) >= h_of(slice_top) - kCanineRidgeMm) q += map.Centre(c), ++m;
+  }
+  const int at = map.CellAt(q / m);
+  const int tip = at >= 0 && map.Filled(at) ? at : slice_top;
+  const double edge = kCanineEdgeCells * map.cell;
+  const bool at_end = u_of(top_cell) - u_lo < edge || u_hi - u_of(top_cell) < edge;
+  out->push_back(Make(view, LandmarkType::kCuspTip, map.Point_J(tip), at_end ? 0.5 : 0.8,
+                      "middle of the highest cells of the canine's tip region"));
 }
 
 // The incisal edge's middle: the mean of the cells of the crown's middle slice within
@@ -377,6 +425,8 @@ std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double too
   const int position = io::ToothPosition(view.fdi);
   if (position <= 2) {
     AddIncisalEdge(view, box, &out);
+  } else if (position == 3) {
+    AddCanineTip(view, box, &out);
   } else {
     AddCusps(view, box, &out);
   }
