@@ -204,7 +204,7 @@ void CheckSettings(const AlignmentSettings& s) {
   check(s.overjet_mm, "overjet_mm (default 2)");
   check(s.overbite_mm, "overbite_mm (default 2)");
   check(s.max_fit_shift_mm, "max_fit_shift_mm (default 6)");
-  check(s.max_fit_yaw_deg, "max_fit_yaw_deg (default 10)");
+  check(s.max_fit_yaw_deg, "max_fit_yaw_deg (default 15)");
 }
 
 }  // namespace

@@ -112,25 +112,47 @@ TEST(AlignArchesTest, RecoversTheKnownRelativePose) {
   EXPECT_TRUE(a.warnings.empty());
 }
 
-// An arch analysis whose upper anterior axis is 4 deg off in its occlusal plane: the frames'
-// alignment inherits the 4 deg, the curve fit takes it out (the curve itself is exact).
-TEST(AlignArchesTest, CurveFitCorrectsAYawErrorOfTheFrames) {
-  constexpr double kYawErrorDeg = 4.0, kAfterFitDeg = 0.5, kAfterFitMm = 0.5;
-  const Eigen::Isometry3d X_LU = TargetPose();
+// The upper arch of an analysis whose anterior axis is `yaw_error_deg` off in its occlusal
+// plane (the curve itself exact), in U.
+JawArch UpperArchWithYawError(double yaw_error_deg) {
   JawArch upper_L = UpperArchInL();
-  const Eigen::AngleAxisd yaw(RadiansFromDegrees(kYawErrorDeg), upper_L.occlusal_J);
+  const Eigen::AngleAxisd yaw(RadiansFromDegrees(yaw_error_deg), upper_L.occlusal_J);
   upper_L.anterior_J = yaw * upper_L.anterior_J;
   upper_L.lateral_J = yaw * upper_L.lateral_J;
-  const JawArch upper_U = Moved(upper_L, X_LU.inverse());
-  const ArchAlignment a = AlignArches(LowerArch(), upper_U);
-  EXPECT_NEAR(AngleDeg(a.X_LU_frames, X_LU), kYawErrorDeg, 1e-6);
-  EXPECT_LE(AngleDeg(a.X_LU, X_LU), kAfterFitDeg);
-  EXPECT_LE(LargestMove(a.X_LU, X_LU, upper_U), kAfterFitMm);
-  EXPECT_NEAR(std::abs(a.fit_yaw_deg), kYawErrorDeg, kAfterFitDeg);
-  EXPECT_LT(a.fit_rms_mm, a.fit_rms_before_mm);
-  AlignmentSettings frames_only;
-  frames_only.fit_curves = false;
-  EXPECT_TRUE(AlignArches(LowerArch(), upper_U, frames_only).X_LU.isApprox(a.X_LU_frames));
+  return Moved(upper_L, TargetPose().inverse());
+}
+
+// The frames' alignment inherits a yaw error of the analysis, the curve fit takes it out: 4 deg,
+// and 12 deg (c2-ios: the frames 9 deg off, the fit's -10.2 deg beyond the old 10 deg limit).
+TEST(AlignArchesTest, CurveFitCorrectsAYawErrorOfTheFrames) {
+  constexpr double kAfterFitDeg = 0.5, kAfterFitMm = 0.5;
+  const Eigen::Isometry3d X_LU = TargetPose();
+  for (const double yaw_error_deg : {4.0, 12.0}) {
+    const JawArch upper_U = UpperArchWithYawError(yaw_error_deg);
+    const ArchAlignment a = AlignArches(LowerArch(), upper_U);
+    EXPECT_NEAR(AngleDeg(a.X_LU_frames, X_LU), yaw_error_deg, 1e-6);
+    EXPECT_LE(AngleDeg(a.X_LU, X_LU), kAfterFitDeg) << yaw_error_deg;
+    EXPECT_LE(LargestMove(a.X_LU, X_LU, upper_U), kAfterFitMm) << yaw_error_deg;
+    EXPECT_NEAR(std::abs(a.fit_yaw_deg), yaw_error_deg, kAfterFitDeg);
+    EXPECT_LT(a.fit_rms_mm, a.fit_rms_before_mm);
+    EXPECT_TRUE(a.warnings.empty()) << yaw_error_deg;
+    AlignmentSettings frames_only;
+    frames_only.fit_curves = false;
+    EXPECT_TRUE(AlignArches(LowerArch(), upper_U, frames_only).X_LU.isApprox(a.X_LU_frames));
+  }
+}
+
+// A fit that would turn the upper farther than max_fit_yaw_deg is not trusted: the frames'
+// alignment is kept, with a warning naming the limit.
+TEST(AlignArchesTest, AFitBeyondTheYawLimitKeepsTheFramesAndWarns) {
+  const JawArch upper_U = UpperArchWithYawError(12.0);
+  AlignmentSettings strict;
+  strict.max_fit_yaw_deg = 8.0;
+  const ArchAlignment a = AlignArches(LowerArch(), upper_U, strict);
+  EXPECT_TRUE(a.X_LU.isApprox(a.X_LU_frames));
+  ASSERT_EQ(a.warnings.size(), 1u);
+  EXPECT_NE(a.warnings[0].find("kept the frames' alignment"), std::string::npos) << a.warnings[0];
+  EXPECT_NE(a.warnings[0].find("8.0 deg"), std::string::npos) << a.warnings[0];
 }
 
 // Overjet and overbite are what the aligned incisal points show.
