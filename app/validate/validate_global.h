@@ -1,7 +1,8 @@
 // `occlude validate --global`: the global search (planner/global_search.h) from starts of
 // several kinds (column `start_kind`; ValidateOptions::global_kinds, by default the first
-// three), scored against the reference and against the seat of the reference (the pose the
-// local search reaches from the reference itself):
+// three), scored against the reference and against the seat of the reference (the best seat
+// the local search reaches from the reference itself: coarse-to-fine with its internal starts
+// within the bound margins, as validate's closing run 0:0):
 //   near:     today's perturbations (validate.h), start k at magnitude k mod the magnitudes;
 //   sagittal: the reference shifted along the arch by 3-12 mm either way plus up to 10 deg
 //             (planner/global_starts.h);
