@@ -70,7 +70,7 @@ std::string GlobalValidateSummaryText(const GlobalValidateResult& result,
   s << "\n";
   s << "arch analysis and the reference's oracles in " << Fixed(result.build_seconds, 1)
     << " s (wall)\n";
-  s << "seat of the reference (the local search from it): "
+  s << "seat of the reference (the best seat of its closing run): "
     << Fixed(result.seat_from_reference.translation_mm, 3) << " mm / "
     << Fixed(result.seat_from_reference.rotation_deg, 2) << " deg from the reference, contact "
     << Fixed(result.seat.evaluation.contact_area_mm2, 2) << " mm^2\n\n";
