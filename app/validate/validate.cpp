@@ -157,6 +157,23 @@ planner::PlanRequest BaseRequest(const ValidateOptions& options) {
   return base;
 }
 
+planner::PlanRequest BoundedRequest(const ValidateOptions& options, const Magnitude& magnitude,
+                                    planner::SolverKind solver,
+                                    const Eigen::Isometry3d& X_LU_start) {
+  planner::PlanRequest req = BaseRequest(options);
+  req.solver = solver;
+  req.X_LU_start = X_LU_start;
+  const double mm = magnitude.mm + options.bound_margin_mm;
+  const double deg = magnitude.deg + options.bound_margin_deg;
+  req.lower_bound.translation_mm = Eigen::Vector3d::Constant(-mm);
+  req.upper_bound.translation_mm = Eigen::Vector3d::Constant(mm);
+  req.lower_bound.rotation_deg = Eigen::Vector3d::Constant(-deg);
+  req.upper_bound.rotation_deg = Eigen::Vector3d::Constant(deg);
+  const bool multi = solver == SolverKind::kCoarseToFine || solver == SolverKind::kNloptGlobal;
+  req.num_starts = multi ? options.solver_starts : 1;
+  return req;
+}
+
 // The perturbed starts per magnitude, seeded per (magnitude, start), shared by all solvers.
 std::vector<std::vector<PoseParameters>> Perturbations(const ValidateOptions& options) {
   std::vector<std::vector<PoseParameters>> perturb(options.magnitudes.size());
@@ -179,16 +196,8 @@ namespace {
 ValidateRun RunJob(const Job& job, const PoseParameters& perturbation, const Setup& setup,
                    const ValidateOptions& options) {
   const Magnitude& mag = options.magnitudes[job.magnitude];
-  planner::PlanRequest req = setup.base;
-  req.solver = job.solver;
-  req.X_LU_start = planner::ComposePose(perturbation, setup.pivot_L, setup.X_ref);
-  req.lower_bound.translation_mm = Eigen::Vector3d::Constant(-(mag.mm + options.bound_margin_mm));
-  req.upper_bound.translation_mm = Eigen::Vector3d::Constant(mag.mm + options.bound_margin_mm);
-  req.lower_bound.rotation_deg = Eigen::Vector3d::Constant(-(mag.deg + options.bound_margin_deg));
-  req.upper_bound.rotation_deg = Eigen::Vector3d::Constant(mag.deg + options.bound_margin_deg);
-  const bool multi =
-      job.solver == SolverKind::kCoarseToFine || job.solver == SolverKind::kNloptGlobal;
-  req.num_starts = multi ? options.solver_starts : 1;
+  planner::PlanRequest req = BoundedRequest(
+      options, mag, job.solver, planner::ComposePose(perturbation, setup.pivot_L, setup.X_ref));
   req.seed = options.seed + static_cast<std::uint32_t>(job.magnitude) * 1009u +
              static_cast<std::uint32_t>(job.start);
   const double c0 = ThreadCpuSeconds();

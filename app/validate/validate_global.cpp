@@ -198,16 +198,17 @@ GlobalValidateSummary SummarizeKind(const std::vector<const GlobalValidateRun*>&
 // --kinds for an unknown kind or none.
 std::vector<std::size_t> KindIndices(const std::vector<std::string>& asked) {
   const std::vector<std::string>& all = GlobalStartKinds();
+  std::string names;
+  for (const std::string& kind : all) names += (names.empty() ? "" : ", ") + kind;
   for (const std::string& kind : asked) {
     if (std::find(all.begin(), all.end(), kind) == all.end())
-      throw UserError("--kinds: '" + kind +
-                      "' is not a start kind; use near, sagittal, apart, cusp");
+      throw UserError("--kinds: '" + kind + "' is not a start kind; use " + names);
   }
   std::vector<std::size_t> indices;
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (std::find(asked.begin(), asked.end(), all[k]) != asked.end()) indices.push_back(k);
   }
-  if (indices.empty()) throw UserError("--kinds: give at least one of near, sagittal, apart, cusp");
+  if (indices.empty()) throw UserError("--kinds: give at least one of " + names);
   return indices;
 }
 
@@ -218,14 +219,8 @@ std::vector<std::size_t> KindIndices(const std::vector<std::string>& asked) {
 // contact where its internal starts find 23 mm^2 within 0.3 mm).
 planner::Proposal SeatOfReference(const planner::OracleSchedule& stages,
                                   const Eigen::Isometry3d& X_ref, const ValidateOptions& o) {
-  planner::PlanRequest r = BaseRequest(o);
-  r.solver = planner::SolverKind::kCoarseToFine;
-  r.X_LU_start = X_ref;
-  r.num_starts = o.solver_starts;
-  r.lower_bound.translation_mm = Eigen::Vector3d::Constant(-o.bound_margin_mm);
-  r.upper_bound.translation_mm = Eigen::Vector3d::Constant(o.bound_margin_mm);
-  r.lower_bound.rotation_deg = Eigen::Vector3d::Constant(-o.bound_margin_deg);
-  r.upper_bound.rotation_deg = Eigen::Vector3d::Constant(o.bound_margin_deg);
+  planner::PlanRequest r =
+      BoundedRequest(o, Magnitude{}, planner::SolverKind::kCoarseToFine, X_ref);
   r.seed = o.seed;
   return planner::Plan(stages, r).proposals.front();
 }

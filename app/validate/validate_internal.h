@@ -18,6 +18,13 @@ void RunInParallel(std::size_t count, const ValidateOptions& options,
 /// samples and the NLopt method of the options.
 planner::PlanRequest BaseRequest(const ValidateOptions& options);
 
+/// A run of `solver` from X_LU_start within the magnitude plus the bound margins of the
+/// options (about the pivot): BaseRequest with those bounds, the solver, and the options'
+/// internal starts for the multi-start solvers (coarse-to-fine, nlopt-global), else one.
+planner::PlanRequest BoundedRequest(const ValidateOptions& options, const Magnitude& magnitude,
+                                    planner::SolverKind solver,
+                                    const Eigen::Isometry3d& X_LU_start);
+
 /// The perturbed starts per magnitude ([magnitude][start]), seeded per (magnitude, start),
 /// shared by all solvers.
 std::vector<std::vector<planner::PoseParameters>> Perturbations(const ValidateOptions& options);
