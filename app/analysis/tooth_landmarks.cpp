@@ -188,42 +188,49 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
   }
 }
 
+// The filled cells of `map` that `keep` accepts within tol_mm of the highest of them (empty when
+// `keep` accepts none); *top_cell (if given) that highest, the first of equals (-1 when none).
+template <typename Keep>
+std::vector<int> CellsNearTop(const HeightMap& map, double tol_mm, Keep keep,
+                              int* top_cell = nullptr) {
+  const auto h_of = [&](int c) { return map.height[static_cast<std::size_t>(c)]; };
+  const int cells = map.nx * map.ny;
+  int top = -1;
+  for (int c = 0; c < cells; ++c) {
+    if (map.Filled(c) && keep(c) && (top < 0 || h_of(c) > h_of(top))) top = c;
+  }
+  if (top_cell) *top_cell = top;
+  std::vector<int> near;
+  if (top < 0) return near;
+  for (int c = 0; c < cells; ++c) {
+    if (map.Filled(c) && keep(c) && h_of(c) >= h_of(top) - tol_mm) near.push_back(c);
+  }
+  return near;
+}
+
 // The canine's tip (kCanineCapMm above): the middle of its region's top along the arch, then
 // the middle of that slice's highest cells across it, as the surface point seen there. Less sure
 // when the region's top lies at its end (the crest rises on out of the region).
 void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const HeightMap& map = view.top;
-  const int cells = map.nx * map.ny;
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
-  const auto h_of = [&](int c) { return map.height[static_cast<std::size_t>(c)]; };
   const double u_lo = box.u_mid + kCanineDistalShare * box.length;
   const double u_hi = box.u_mid + kCanineMesialShare * box.length;
-  const auto in_region = [&](int c) { return map.Filled(c) && u_of(c) >= u_lo && u_of(c) <= u_hi; };
   int top_cell = -1;
-  for (int c = 0; c < cells; ++c) {
-    if (in_region(c) && (top_cell < 0 || h_of(c) > h_of(top_cell))) top_cell = c;
-  }
-  if (top_cell < 0) return;
+  const std::vector<int> cap = CellsNearTop(
+      map, kCanineCapMm, [&](int c) { return u_of(c) >= u_lo && u_of(c) <= u_hi; }, &top_cell);
+  if (cap.empty()) return;
   double u_sum = 0.0;
-  int n = 0;
-  for (int c = 0; c < cells; ++c) {
-    if (in_region(c) && h_of(c) >= h_of(top_cell) - kCanineCapMm) u_sum += u_of(c), ++n;
-  }
-  const double u_tip = u_sum / n;
-  const auto in_slice = [&](int c) {
-    return map.Filled(c) && std::abs(u_of(c) - u_tip) <= kCanineSliceMm;
-  };
+  for (const int c : cap) u_sum += u_of(c);
+  const double u_tip = u_sum / static_cast<double>(cap.size());
   int slice_top = -1;
-  for (int c = 0; c < cells; ++c) {
-    if (in_slice(c) && (slice_top < 0 || h_of(c) > h_of(slice_top))) slice_top = c;
-  }
-  if (slice_top < 0) return;
+  const std::vector<int> ridge = CellsNearTop(
+      map, kCanineRidgeMm, [&](int c) { return std::abs(u_of(c) - u_tip) <= kCanineSliceMm; },
+      &slice_top);
+  if (ridge.empty()) return;
   Eigen::Vector2d q = Eigen::Vector2d::Zero();
-  int m = 0;
-  for (int c = 0; c < cells; ++c) {
-    if (in_slice(c) && h_of(c) >= h_of(slice_top) - kCanineRidgeMm) q += map.Centre(c), ++m;
-  }
-  const int at = map.CellAt(q / m);
+  for (const int c : ridge) q += map.Centre(c);
+  const int at = map.CellAt(q / static_cast<double>(ridge.size()));
   const int tip = at >= 0 && map.Filled(at) ? at : slice_top;
   const double edge = kCanineEdgeCells * map.cell;
   const bool at_end = u_of(top_cell) - u_lo < edge || u_hi - u_of(top_cell) < edge;
@@ -237,37 +244,19 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
 // than of the segmented span.
 void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
-  const auto h_of = [&](int c) { return view.top.height[static_cast<std::size_t>(c)]; };
-  const int cells = view.top.nx * view.top.ny;
-  double top = -std::numeric_limits<double>::infinity();
-  for (int c = 0; c < cells; ++c) {
-    if (view.top.Filled(c)) top = std::max(top, h_of(c));
-  }
   std::vector<double> ridge_u;
-  for (int c = 0; c < cells; ++c) {
-    if (view.top.Filled(c) && h_of(c) >= top - kIncisalTopMm) ridge_u.push_back(u_of(c));
-  }
+  for (const int c : CellsNearTop(view.top, kIncisalTopMm, [](int) { return true; }))
+    ridge_u.push_back(u_of(c));
   if (ridge_u.empty()) return;
   const double u_mid = 0.5 * (Quantile(ridge_u, 0.05) + Quantile(ridge_u, 0.95));
   const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
-  double slice_top = -std::numeric_limits<double>::infinity();
-  for (int c = 0; c < cells; ++c) {
-    if (view.top.Filled(c) && std::abs(u_of(c) - u_mid) <= half)
-      slice_top = std::max(slice_top, h_of(c));
-  }
+  const std::vector<int> edge = CellsNearTop(
+      view.top, kIncisalRidgeMm, [&](int c) { return std::abs(u_of(c) - u_mid) <= half; });
+  if (edge.empty()) return;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  int n = 0;
-  for (int c = 0; c < cells; ++c) {
-    if (!view.top.Filled(c) || std::abs(u_of(c) - u_mid) > half ||
-        h_of(c) < slice_top - kIncisalRidgeMm)
-      continue;
-    sum += view.top.Point_J(c);
-    ++n;
-  }
-  if (n > 0) {
-    out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / n, 0.8,
-                        "middle of the incisal ridge's highest cells"));
-  }
+  for (const int c : edge) sum += view.top.Point_J(c);
+  out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / static_cast<double>(edge.size()), 0.8,
+                      "middle of the incisal ridge's highest cells"));
 }
 
 // The central fossa: the lowest cell of the crown's middle.
