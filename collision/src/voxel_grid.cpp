@@ -200,6 +200,11 @@ VoxelClass VoxelGrid::Classify(const Eigen::Vector3i& ijk) const {
   return VoxelClass::kUndefined;
 }
 
+bool VoxelGrid::IsInterior(const Eigen::Vector3i& ijk) const {
+  if ((ijk.array() < 0).any() || (ijk.array() >= dims.array()).any()) return false;
+  return detail::RunsContain(interior_runs, ijk.x(), ijk.y(), ijk.z());
+}
+
 std::size_t VoxelGrid::MemoryBytes() const {
   return surface_keys.capacity() * sizeof(std::uint64_t) +
          triangle_offsets.capacity() * sizeof(std::uint32_t) +

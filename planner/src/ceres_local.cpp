@@ -69,28 +69,26 @@ class PivotPoseManifold final : public ceres::Manifold {
   }
 };
 
-// One residual of one sample: the hinge (kind 0) or the attraction (kind 1).
+// One residual of one sample: the hinge (kind 0) or the attraction (kind 1), through the round's
+// memo (a sample's two blocks share one distance, every block one rotation).
 class SampleCost final : public ceres::SizedCostFunction<1, 6> {
  public:
-  SampleCost(const SurfaceResiduals::Impl* model, std::size_t sample, int kind)
-      : model_(model), sample_(sample), kind_(kind) {}
+  SampleCost(ResidualMemo* memo, std::size_t sample, int kind)
+      : memo_(memo), sample_(sample), kind_(kind) {}
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
-    const Eigen::Map<const Vector6d> z(parameters[0]);
-    double hinge = 0.0, attraction = 0.0;
-    Row6d jh, ja;
     const bool want = jacobians != nullptr && jacobians[0] != nullptr;
-    model_->Residuals(sample_, z, &hinge, &attraction, want ? &jh : nullptr, want ? &ja : nullptr);
-    residuals[0] = kind_ == 0 ? hinge : attraction;
+    const ResidualMemo::Sample& s = memo_->At(sample_, parameters[0], want);
+    residuals[0] = kind_ == 0 ? s.hinge : s.attraction;
     if (want) {
       Eigen::Map<Row6d> jacobian(jacobians[0]);
-      jacobian = kind_ == 0 ? jh : ja;
+      jacobian = kind_ == 0 ? s.j_hinge : s.j_attraction;
     }
     return true;
   }
 
  private:
-  const SurfaceResiduals::Impl* model_;
+  ResidualMemo* memo_;
   std::size_t sample_;
   int kind_;
 };
@@ -130,17 +128,17 @@ std::vector<int> LockedDofs(const Problem& problem) {
 
 // The least-squares problem of one round on the ambient parameters z: a hinge and an
 // attraction residual per sample of `model`, the optional closure, the manifold and the bounds.
-void AddSeatProblem(const SurfaceResiduals::Impl& model, const ResidualSettings& settings,
-                    const Problem& problem, const std::vector<int>& locked, Vector6d* z,
-                    ceres::Problem* lsq) {
+void AddSeatProblem(const SurfaceResiduals::Impl& model, ResidualMemo* memo,
+                    const ResidualSettings& settings, const Problem& problem,
+                    const std::vector<int>& locked, Vector6d* z, ceres::Problem* lsq) {
   for (std::size_t i = 0; i < model.area.size(); ++i) {
     lsq->AddResidualBlock(
-        new SampleCost(&model, i, 0),
+        new SampleCost(memo, i, 0),
         new ceres::HuberLoss(settings.penetration_weight * std::sqrt(model.area[i]) *
                              settings.penetration_huber_mm),
         z->data());
     lsq->AddResidualBlock(
-        new SampleCost(&model, i, 1),
+        new SampleCost(memo, i, 1),
         new ceres::CauchyLoss(settings.attraction_scale_mm * std::sqrt(model.area[i])), z->data());
   }
   if (settings.closure_weight > 0.0 && problem.settle_dir.squaredNorm() > 0.0) {
@@ -192,7 +190,8 @@ bool SolveAndSettle(const OracleStage& stage, const SampleSet& samples, const Pr
   ceres::Problem::Options popts;
   ceres::Problem lsq(popts);
   Vector6d z = AmbientFromX(*x);
-  AddSeatProblem(model, settings, problem, locked, &z, &lsq);
+  ResidualMemo memo(model);
+  AddSeatProblem(model, &memo, settings, problem, locked, &z, &lsq);
   ceres::Solver::Summary summary;
   ceres::Solve(RoundOptions(), &lsq, &summary);
   result->evaluations += summary.num_residual_evaluations;

@@ -4,6 +4,7 @@
 #include "occlude/planner/least_squares.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "least_squares_internal.h"
 #include "occlude/angles.h"
@@ -46,6 +47,24 @@ Vector6d XFromAmbient(const Vector6d& z) {
   Vector6d x = z;
   x.tail<3>() /= kRadPerDeg;
   return x;
+}
+
+ResidualMemo::ResidualMemo(const SurfaceResiduals::Impl& model)
+    : model_(model), pose_(Vector6d::Zero()), samples_(model.area.size()) {}
+
+const ResidualMemo::Sample& ResidualMemo::At(std::size_t i, const double* z, bool jacobians) {
+  if (point_ == 0 || std::memcmp(z, pose_.z.data(), sizeof(double) * 6) != 0) {
+    pose_ = SurfaceResiduals::Impl::PoseAt(Eigen::Map<const Vector6d>(z));
+    ++point_;
+  }
+  Sample& s = samples_.at(i);
+  if (s.point != point_ || (jacobians && !s.has_jacobians)) {
+    model_.Residuals(i, pose_, &s.hinge, &s.attraction, jacobians ? &s.j_hinge : nullptr,
+                     jacobians ? &s.j_attraction : nullptr);
+    s.point = point_;
+    s.has_jacobians = jacobians;
+  }
+  return s;
 }
 }  // namespace detail
 
@@ -93,13 +112,17 @@ SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSe
   }
 }
 
-double SurfaceResiduals::Impl::Distance(std::size_t i, const Vector6d& z, Row6d* gradient) const {
+SurfaceResiduals::Impl::PoseAt::PoseAt(const Vector6d& z_in) : z(z_in) {
   const Eigen::Vector3d w = z.tail<3>();
   const double angle = w.norm();
-  const Eigen::Matrix3d R = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
-                                      : Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d Rv = R * v_L[i];
-  const Eigen::Vector3d q = pivot + z.head<3>() + Rv;
+  R = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
+                : Eigen::Matrix3d::Identity();
+  Jl = detail::LeftJacobian(w);
+}
+
+double SurfaceResiduals::Impl::Distance(std::size_t i, const PoseAt& pose, Row6d* gradient) const {
+  const Eigen::Vector3d Rv = pose.R * v_L[i];
+  const Eigen::Vector3d q = pivot + pose.z.head<3>() + Rv;
   double d = 0.0;
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   bool deep = false;
@@ -110,16 +133,16 @@ double SurfaceResiduals::Impl::Distance(std::size_t i, const Vector6d& z, Row6d*
   }
   if (gradient) {
     gradient->head<3>() = n.transpose();
-    gradient->tail<3>() = Rv.cross(n).transpose() * detail::LeftJacobian(w);
+    gradient->tail<3>() = Rv.cross(n).transpose() * pose.Jl;
   }
   return d;
 }
 
-void SurfaceResiduals::Impl::Residuals(std::size_t i, const Vector6d& z, double* hinge,
+void SurfaceResiduals::Impl::Residuals(std::size_t i, const PoseAt& pose, double* hinge,
                                        double* attraction, Row6d* j_hinge,
                                        Row6d* j_attraction) const {
   Row6d g;
-  const double d = Distance(i, z, (j_hinge || j_attraction) ? &g : nullptr);
+  const double d = Distance(i, pose, (j_hinge || j_attraction) ? &g : nullptr);
   const double s = std::sqrt(area[i]);
   const double wp = settings.penetration_weight * s;
   const double e = d + settings.penetration_allowance_mm;  // < 0: beyond the allowance
@@ -148,7 +171,7 @@ int SurfaceResiduals::size() const { return static_cast<int>(2 * impl_->area.siz
 
 void SurfaceResiduals::Evaluate(const PoseParameters& params, Eigen::VectorXd* residuals,
                                 Eigen::MatrixXd* jacobian) const {
-  const Vector6d z = detail::AmbientFromX(detail::FromParameters(params));
+  const Impl::PoseAt pose(detail::AmbientFromX(detail::FromParameters(params)));
   const auto n = static_cast<Eigen::Index>(impl_->area.size());
   residuals->resize(2 * n);
   if (jacobian) jacobian->resize(2 * n, 6);
@@ -157,8 +180,8 @@ void SurfaceResiduals::Evaluate(const PoseParameters& params, Eigen::VectorXd* r
   unit.tail<3>() *= RadiansFromDegrees(1.0);
   for (Eigen::Index i = 0; i < n; ++i) {
     Row6d jh, ja;
-    impl_->Residuals(static_cast<std::size_t>(i), z, &(*residuals)[2 * i], &(*residuals)[2 * i + 1],
-                     jacobian ? &jh : nullptr, jacobian ? &ja : nullptr);
+    impl_->Residuals(static_cast<std::size_t>(i), pose, &(*residuals)[2 * i],
+                     &(*residuals)[2 * i + 1], jacobian ? &jh : nullptr, jacobian ? &ja : nullptr);
     if (jacobian) {
       jacobian->row(2 * i) = jh.cwiseProduct(unit);
       jacobian->row(2 * i + 1) = ja.cwiseProduct(unit);

@@ -109,9 +109,7 @@ bool StageDistance(const OracleStage& stage, const Eigen::Vector3d& p_L, double 
   *deep = false;
   if (!known) {
     const collision::VoxelGrid& grid = oracle.lower_tree().grid();
-    const Eigen::Vector3i v = grid.VoxelOf(p_L);
-    const bool inside = (v.array() >= 0).all() && (v.array() < grid.dims.array()).all();
-    *deep = inside && grid.Classify(v) == collision::VoxelClass::kInterior;
+    *deep = grid.IsInterior(grid.VoxelOf(p_L));
   }
   return known;
 }

@@ -216,6 +216,7 @@ TEST(VoxelizeTest, SphereInteriorMatchesAnalytic) {
     for (int j = 0; j < g.dims.y(); ++j) {
       for (int i = 0; i < g.dims.x(); ++i) {
         const VoxelClass c = g.Classify({i, j, k});
+        ASSERT_EQ(g.IsInterior({i, j, k}), c == VoxelClass::kInterior) << i << " " << j << " " << k;
         const double d = (g.VoxelCenter({i, j, k}) - center).norm();
         const bool expected = d < r && c != VoxelClass::kSurface;
         inside += expected;
@@ -228,6 +229,11 @@ TEST(VoxelizeTest, SphereInteriorMatchesAnalytic) {
   }
   EXPECT_GT(inside, 5000u);
   EXPECT_LT(disagree_near, inside / 100);
+  for (const Eigen::Vector3i& outside :
+       {Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, g.dims.y(), 0),
+        Eigen::Vector3i(0, 0, g.dims.z() + 5)}) {
+    EXPECT_FALSE(g.IsInterior(outside));
+  }
   std::size_t run_voxels = 0;
   for (const VoxelRun& run : g.interior_runs)
     run_voxels += static_cast<std::size_t>(run.x_end - run.x_begin);
