@@ -117,6 +117,8 @@ class CaseSession {
                                                     const collision::OracleOptions& options,
                                                     const std::string& what);
   collision::RegionOfInterestRequest RegionRequest(double band_mm) const;
+  /// The regions of every stage from one selection's bounds (made on the first region).
+  std::unique_ptr<collision::RegionSelector> region_;
   // The arch analysis: given landmarks in the session's frames, detection, and both combined.
   std::vector<io::Landmark> given_;
   Eigen::Isometry3d X_LU_ref_loaded_ = Eigen::Isometry3d::Identity();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -100,9 +101,10 @@ std::vector<std::uint32_t> Kept(const io::TriangleMesh& mesh_L, const DistanceBo
 
 // `kept` (ascending) grown by every closed component of `mesh` it touches: cutting one would
 // open it and lose its interior (the oracle's deep samples and its culls of cells inside).
+// `closed`: detail::ClosedComponentOfTriangle of the mesh.
 std::vector<std::uint32_t> WholeClosedComponents(const io::TriangleMesh& mesh,
+                                                 const std::vector<std::int32_t>& closed,
                                                  const std::vector<std::uint32_t>& kept) {
-  const std::vector<std::int32_t> closed = detail::ClosedComponentOfTriangle(mesh);
   std::vector<bool> touched;
   for (const std::uint32_t t : kept) {
     const std::int32_t c = closed[t];
@@ -195,31 +197,78 @@ double MaxDisplacementMm(const io::TriangleMesh& upper_U, const RegionOfInterest
   return BoundNorm(request, 0) + 2.0 * std::sin(0.5 * angle) * radius;
 }
 
-RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::TriangleMesh>& lower_L,
-                                         const std::shared_ptr<const io::TriangleMesh>& upper_U,
-                                         const RegionOfInterestRequest& request) {
+struct RegionSelector::Impl {
+  std::shared_ptr<const io::TriangleMesh> lower_L, upper_U;
+  RegionOfInterestRequest request;
+  double displacement_mm = 0.0;
+  io::TriangleMesh upper_L;                               ///< the upper at the start pose
+  std::optional<DistanceBound> upper_bound, lower_bound;  ///< set unless a jaw is empty
+  std::vector<std::int32_t> lower_closed;  ///< detail::ClosedComponentOfTriangle of the lower
+  double seconds = 0.0;                    ///< of the construction
+};
+
+RegionSelector::RegionSelector(std::shared_ptr<const io::TriangleMesh> lower_L,
+                               std::shared_ptr<const io::TriangleMesh> upper_U,
+                               RegionOfInterestRequest request)
+    : impl_(std::make_unique<Impl>()) {
   if (!lower_L || !upper_U) throw std::invalid_argument("ComputeRegionOfInterest: null mesh");
+  const auto start = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  m.displacement_mm = MaxDisplacementMm(*upper_U, request);  // validates the request
+  m.upper_L = upper_U->Transformed(request.X_LU_start);
+  if (!lower_L->empty() && !m.upper_L.empty()) {
+    m.upper_bound = BoundOf(m.upper_L, request.voxel_size_mm);
+    m.lower_bound = BoundOf(*lower_L, request.voxel_size_mm);
+    m.lower_closed = detail::ClosedComponentOfTriangle(*lower_L);
+  }
+  m.lower_L = std::move(lower_L);
+  m.upper_U = std::move(upper_U);
+  m.request = request;
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+RegionSelector::~RegionSelector() = default;
+RegionSelector::RegionSelector(RegionSelector&&) noexcept = default;
+RegionSelector& RegionSelector::operator=(RegionSelector&&) noexcept = default;
+
+const RegionOfInterestRequest& RegionSelector::request() const { return impl_->request; }
+
+double RegionSelector::seconds() const { return impl_->seconds; }
+
+RegionOfInterest RegionSelector::Select(double band_mm) const {
+  const Impl& m = *impl_;
+  RegionOfInterestRequest banded = m.request;
+  banded.band_mm = band_mm;
+  Validate(banded);
   const auto start = std::chrono::steady_clock::now();
   RegionOfInterest roi;
   RegionOfInterestStats& s = roi.stats;
-  s.band_mm = request.band_mm;
-  s.displacement_mm = MaxDisplacementMm(*upper_U, request);  // validates the request
+  s.band_mm = band_mm;
+  s.displacement_mm = m.displacement_mm;
   s.reach_mm = s.band_mm + s.displacement_mm;
-  s.lower_total = lower_L->num_triangles();
-  s.upper_total = upper_U->num_triangles();
-
-  const io::TriangleMesh upper_L = upper_U->Transformed(request.X_LU_start);
+  s.lower_total = m.lower_L->num_triangles();
+  s.upper_total = m.upper_U->num_triangles();
   std::vector<std::uint32_t> lower_kept, upper_kept;
-  if (!lower_L->empty() && !upper_L.empty()) {
-    lower_kept = WholeClosedComponents(
-        *lower_L, Kept(*lower_L, BoundOf(upper_L, request.voxel_size_mm), s.reach_mm));
-    upper_kept = Kept(upper_L, BoundOf(*lower_L, request.voxel_size_mm), s.reach_mm);
+  if (m.upper_bound && m.lower_bound) {
+    lower_kept = WholeClosedComponents(*m.lower_L, m.lower_closed,
+                                       Kept(*m.lower_L, *m.upper_bound, s.reach_mm));
+    upper_kept = Kept(m.upper_L, *m.lower_bound, s.reach_mm);
   }
   s.lower_kept = lower_kept.size();
   s.upper_kept = upper_kept.size();
-  roi.lower = SubMesh(lower_L, std::move(lower_kept));
-  roi.upper = SubMesh(upper_U, std::move(upper_kept));
+  roi.lower = SubMesh(m.lower_L, std::move(lower_kept));
+  roi.upper = SubMesh(m.upper_U, std::move(upper_kept));
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return roi;
+}
+
+RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                                         const std::shared_ptr<const io::TriangleMesh>& upper_U,
+                                         const RegionOfInterestRequest& request) {
+  Validate(request);
+  const RegionSelector selector(lower_L, upper_U, request);
+  RegionOfInterest roi = selector.Select(request.band_mm);
+  roi.stats.seconds += selector.seconds();
   return roi;
 }
 

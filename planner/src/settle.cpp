@@ -107,11 +107,16 @@ double SmoothWeight(double d, double band, double range) {
   return (1.0 - s * s) * (1.0 - s * s);
 }
 
+// What a caller of EvaluateSet needs: everything, or only the penetration measure and the
+// smallest known distance (the settle), which skips the seat cost, contact and smooth score.
+enum class SetParts { kAll, kPenetration };
+
 // Pass 2: seat cost, contact, penetration and the smooth score; spike samples are left out of
 // the penalty and the measure.
 void AccumulateSet(const SampleSet& samples, const Eigen::Isometry3d& X_LU, const Problem& problem,
                    const ResidualSettings& seat, const SetDistances& m,
-                   const std::vector<char>& spike, SetEvaluation* e, SetTotals* t) {
+                   const std::vector<char>& spike, SetParts parts, SetEvaluation* e, SetTotals* t) {
+  const bool score = parts == SetParts::kAll;
   const PlanRequest& req = *problem.request;
   const double band = req.contact_band_mm, range = req.attraction_range_mm;
   for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -120,10 +125,10 @@ void AccumulateSet(const SampleSet& samples, const Eigen::Isometry3d& X_LU, cons
     const bool attract = samples.facing[i] >= seat.attraction_min_facing;
     if (spike[i]) {
       e->max_penetration_mm = std::max(e->max_penetration_mm, -d);
-      e->seat_cost += SeatSampleCost(0.0, a, attract, seat);
+      if (score) e->seat_cost += SeatSampleCost(0.0, a, attract, seat);
       continue;
     }
-    e->seat_cost += SeatSampleCost(d, a, attract, seat);
+    if (score) e->seat_cost += SeatSampleCost(d, a, attract, seat);
     if (!m.known[i]) {
       if (m.deep[i]) {
         ++e->deep;
@@ -133,8 +138,6 @@ void AccumulateSet(const SampleSet& samples, const Eigen::Isometry3d& X_LU, cons
     }
     e->min_distance_mm = std::min(e->min_distance_mm, d);
     if (d > range) continue;
-    const double k = SmoothWeight(d, band, range);
-    if (d >= 0.0 && d <= band) e->contact_area_mm2 += a;
     if (d <= band) t->near_area += a;
     if (d < 0.0) {
       t->pen_kept.emplace_back(-d, a);
@@ -142,6 +145,9 @@ void AccumulateSet(const SampleSet& samples, const Eigen::Isometry3d& X_LU, cons
       const double excess = -d - req.max_penetration_mm;
       if (excess > 0.0) e->excess_rms_mm += a * excess * excess;
     }
+    if (!score) continue;
+    if (d >= 0.0 && d <= band) e->contact_area_mm2 += a;
+    const double k = SmoothWeight(d, band, range);
     e->smooth_score += a * k;
     const Eigen::Vector3d rel = X_LU * samples.p_U[i] - problem.arch.origin_L;
     if (req.bilateral_posterior_weight > 0.0 &&
@@ -167,10 +173,9 @@ void FinishSet(const OracleStage& stage, const SampleSet& samples, const PlanReq
   e->feasible = e->robust_penetration_mm <= req.max_penetration_mm;
 }
 
-}  // namespace
-
-SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
-                          const Eigen::Isometry3d& X_LU, const Problem& problem) {
+SetEvaluation EvaluateSetParts(const OracleStage& stage, const SampleSet& samples,
+                               const Eigen::Isometry3d& X_LU, const Problem& problem,
+                               SetParts parts) {
   const PlanRequest& req = *problem.request;
   const ResidualSettings seat = SeatSettings(stage, req);
   const double reach = std::max({req.attraction_range_mm, seat.window_mm, 0.5});
@@ -179,9 +184,16 @@ SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
   SetEvaluation e;
   e.min_distance_mm = std::numeric_limits<double>::infinity();
   SetTotals totals;
-  AccumulateSet(samples, X_LU, problem, seat, m, spike, &e, &totals);
+  AccumulateSet(samples, X_LU, problem, seat, m, spike, parts, &e, &totals);
   FinishSet(stage, samples, req, totals, &e);
   return e;
+}
+
+}  // namespace
+
+SetEvaluation EvaluateSet(const OracleStage& stage, const SampleSet& samples,
+                          const Eigen::Isometry3d& X_LU, const Problem& problem) {
+  return EvaluateSetParts(stage, samples, X_LU, problem, SetParts::kAll);
 }
 
 namespace {
@@ -266,7 +278,8 @@ Vector6d SettleOnSet(const OracleStage& stage, const SampleSet& samples, const P
       [&](double offset) {
         ++*evaluations;
         const SetEvaluation e =
-            EvaluateSet(stage, samples, PoseOf(problem, Offset(problem, x, offset)), problem);
+            EvaluateSetParts(stage, samples, PoseOf(problem, Offset(problem, x, offset)), problem,
+                             SetParts::kPenetration);
         return std::make_pair(e.robust_penetration_mm, e.min_distance_mm);
       },
       0.25, 0.003);

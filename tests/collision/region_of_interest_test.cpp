@@ -289,6 +289,32 @@ TEST(RegionOfInterest, DisplacementBoundHoldsAndReachGrowsWithTheBounds) {
   EXPECT_NEAR(MaxDisplacementMm(*s.upper, r), std::sqrt(27.0), test::kExactMm);
 }
 
+// One selector serves every band of a schedule with the answer of a selection made for that
+// band alone: the same kept triangles, sub-meshes and stats.
+TEST(RegionOfInterest, SelectorGivesEachBandsOwnSelection) {
+  const Scene& s = Synthetic(/*open_lower=*/true);
+  const RegionOfInterestRequest base = Request(s, 1.0, 2.0, 0.0);
+  const RegionSelector selector(s.lower, s.upper, base);
+  EXPECT_GE(selector.seconds(), 0.0);
+  std::size_t cut = 0;
+  for (const double band : {0.5, 2.0, 1.0, 4.0}) {  // out of order on purpose
+    RegionOfInterestRequest r = base;
+    r.band_mm = band;
+    const RegionOfInterest alone = ComputeRegionOfInterest(s.lower, s.upper, r);
+    const RegionOfInterest shared = selector.Select(band);
+    EXPECT_EQ(shared.lower.original_triangle, alone.lower.original_triangle) << band;
+    EXPECT_EQ(shared.upper.original_triangle, alone.upper.original_triangle) << band;
+    EXPECT_EQ(shared.lower.mesh->vertices, alone.lower.mesh->vertices) << band;
+    EXPECT_EQ(shared.upper.mesh->triangles, alone.upper.mesh->triangles) << band;
+    EXPECT_EQ(shared.stats.reach_mm, alone.stats.reach_mm);
+    EXPECT_EQ(shared.stats.lower_kept, alone.stats.lower_kept);
+    EXPECT_EQ(shared.stats.upper_kept, alone.stats.upper_kept);
+    cut += alone.stats.lower_total - alone.stats.lower_kept;
+  }
+  EXPECT_GT(cut, 0u);  // the bands cut something: the comparison is not of whole meshes only
+  EXPECT_THROW(selector.Select(-1.0), std::invalid_argument);
+}
+
 TEST(RegionOfInterest, HugeBoundsKeepEverything) {
   const Scene& s = Synthetic();
   const RegionOfInterest roi =

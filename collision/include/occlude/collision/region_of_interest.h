@@ -79,6 +79,31 @@ RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::Triangl
                                          const std::shared_ptr<const io::TriangleMesh>& upper_U,
                                          const RegionOfInterestRequest& request);
 
+/// The regions of one pair, start pose and bounds for several bands (a schedule's voxel
+/// sizes): the jaws' distance bounds, the upper at the start pose and the lower's closed
+/// components are made once, at construction; Select(band) then gives exactly
+/// ComputeRegionOfInterest of the request with that band. Select is const and thread-safe.
+class RegionSelector {
+ public:
+  /// `request.band_mm` is ignored. Throws as ComputeRegionOfInterest.
+  RegionSelector(std::shared_ptr<const io::TriangleMesh> lower_L,
+                 std::shared_ptr<const io::TriangleMesh> upper_U, RegionOfInterestRequest request);
+  ~RegionSelector();
+  RegionSelector(RegionSelector&&) noexcept;
+  RegionSelector& operator=(RegionSelector&&) noexcept;
+
+  /// The region for `band_mm` (stats.seconds: this selection's wall time).
+  RegionOfInterest Select(double band_mm) const;
+  /// The request it was made for (band_mm as given to the constructor).
+  const RegionOfInterestRequest& request() const;
+  /// Wall seconds of the construction.
+  double seconds() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// The farthest (mm) a JawOracle built with `options` reads the lower jaw around an upper
 /// sample (or the lower jaw's surface voxels, its field corners' closest points and their
 /// pseudo-normals), at every accuracy level, for requests whose exact-level search reach
