@@ -17,7 +17,8 @@ namespace occlude::app {
 namespace {
 
 // The map fields use coarse voxels: Exact() is exact at any voxel size, and a coarse grid
-// keeps the search for a 1 mm reach to a few voxels per vertex.
+// keeps the search for a 1 mm reach to a few voxels per vertex. Exact-only fields: no corner
+// values.
 constexpr double kMapVoxelMm = 0.4;
 
 // A region keeping at least this share of a jaw's triangles is not worth a cut (session_region.h).
@@ -31,6 +32,7 @@ collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) 
   const collision::VoxelGrid grid = collision::Voxelize(*mesh, options);
   collision::NarrowBandOptions band;
   band.dilation_voxels = 0;
+  band.corner_values = false;  // the maps ask Exact() only
   return collision::NarrowBandSdf::Build(std::move(mesh), grid, band);
 }
 

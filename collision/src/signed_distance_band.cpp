@@ -75,8 +75,10 @@ NarrowBandSdf NarrowBandSdf::Build(std::shared_ptr<const io::TriangleMesh> mesh,
   sdf.band_mm_ = options.dilation_voxels * grid.voxel_size_mm;
   sdf.CopyGrid(grid);
   sdf.PackTriangles();
-  sdf.FillBlocks(sdf.BandVoxels(grid, options.dilation_voxels),
-                 detail::ResolveThreads(options.threads));
+  if (options.corner_values) {
+    sdf.FillBlocks(sdf.BandVoxels(grid, options.dilation_voxels),
+                   detail::ResolveThreads(options.threads));
+  }
   sdf.build_seconds_ = Seconds(start);
   return sdf;
 }

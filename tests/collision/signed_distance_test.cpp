@@ -419,6 +419,42 @@ TEST(NarrowBand, Deterministic) {
   }
 }
 
+// An exact-only field (no corner values) answers Exact bit-identically to the full field and
+// Interpolate / CellValue / the band queries with nothing.
+TEST(NarrowBand, ExactOnlyFieldAnswersExactAlikeAndInterpolatesNothing) {
+  io::TriangleMesh mesh = test::MakeSphere(V(0, 0, 0), 2.0, 20, 30);
+  mesh.Append(test::MakeBox(V(1.5, -0.5, -0.5), V(3.0, 0.5, 0.5)));
+  const auto shared = std::make_shared<const io::TriangleMesh>(mesh);
+  const VoxelGrid grid = Grid(mesh, 0.2);
+  NarrowBandOptions exact_only;
+  exact_only.dilation_voxels = 0;
+  exact_only.corner_values = false;
+  NarrowBandOptions full = exact_only;
+  full.corner_values = true;
+  const NarrowBandSdf a = NarrowBandSdf::Build(shared, grid, exact_only);
+  const NarrowBandSdf b = NarrowBandSdf::Build(shared, grid, full);
+  EXPECT_LT(a.MemoryBytes(), b.MemoryBytes());
+  EXPECT_EQ(a.num_band_voxels(), 0u);
+  EXPECT_EQ(a.BandVoxelsWithin(-1.0f, 1.0f, 1).surface_keys.size(), 0u);
+  NearSurfaceSampler sampler(mesh, 6);
+  int found = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const V p = sampler.Next(0.8);
+    SignedDistanceSample sa, sb;
+    const bool ka = a.Exact(p, 1.0, &sa), kb = b.Exact(p, 1.0, &sb);
+    ASSERT_EQ(ka, kb) << p.transpose();
+    if (!ka) continue;
+    ++found;
+    EXPECT_EQ(sa.distance, sb.distance);
+    EXPECT_EQ(sa.triangle, sb.triangle);
+    EXPECT_EQ(sa.closest, sb.closest);
+    double d = 0.0;
+    EXPECT_FALSE(a.Interpolate(p, &d));
+    EXPECT_FALSE(a.CellValue(p, &d));
+  }
+  EXPECT_GT(found, 1500);
+}
+
 TEST(NarrowBand, RejectsBadInput) {
   const io::TriangleMesh box = test::MakeBox(V(0, 0, 0), V(1, 1, 1));
   const VoxelGrid grid = Grid(box, 0.2);

@@ -100,6 +100,10 @@ struct NarrowBandOptions {
   int dilation_voxels = 2;
   /// Threads of the build (0 = every core); the field is the same for any count.
   int threads = 0;
+  /// False: an exact-only field, without the band's corner values (their computation is most
+  /// of a build). Exact and Sign answer as with them; Interpolate, CellValue and the band
+  /// queries answer nothing (false, empty).
+  bool corner_values = true;
 };
 
 namespace detail {
