@@ -11,24 +11,27 @@ namespace occlude::planner::detail {
 std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& samples,
                                   const Problem& problem, int count, std::uint32_t seed,
                                   int* evaluations) {
+  // The samples are drawn in order, then settled and scored in parallel (each on its own).
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Vector6d> poses;
-  std::vector<double> scores;
-  for (int k = 0; k < count; ++k) {
-    Vector6d x;
+  std::vector<Vector6d> poses(static_cast<std::size_t>(std::max(0, count)));
+  for (Vector6d& x : poses) {
     for (int i = 0; i < kNumDof; ++i)
       x[i] = problem.lower[i] + unit(rng) * (problem.upper[i] - problem.lower[i]);
     // The settle sets the occlusal height; start each sample from the reference height.
     const Eigen::Vector3d t = x.head<3>();
     x.head<3>() = t - problem.settle_dir * problem.settle_dir.dot(t);
     x = Clamp(problem, x);
-    x = SettleOnSet(stage, samples, problem, x, evaluations);
-    const SetEvaluation e = EvaluateSet(stage, samples, PoseOf(problem, x), problem);
-    ++*evaluations;
-    poses.push_back(x);
-    scores.push_back(-e.seat_cost);
   }
+  std::vector<double> scores(poses.size());
+  std::vector<int> evals(poses.size(), 0);
+  ParallelFor(poses.size(), problem.request->num_threads, [&](std::size_t k) {
+    poses[k] = SettleOnSet(stage, samples, problem, poses[k], &evals[k]);
+    const SetEvaluation e = EvaluateSet(stage, samples, PoseOf(problem, poses[k]), problem);
+    ++evals[k];
+    scores[k] = -e.seat_cost;
+  });
+  for (const int e : evals) *evaluations += e;
   std::vector<std::size_t> order(poses.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
