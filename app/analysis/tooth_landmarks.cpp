@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "geometry_util.h"
 #include "occlusal_plane.h"
@@ -23,11 +24,17 @@ constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to th
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
 // Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare]. Its top there is a worn dome
-// whose single highest cell wanders along the flat crest: the tip is at the middle (along the
-// arch) of the region's cells within kCanineCapMm of its top, and across at the middle of the
-// cells of that slice (kCanineSliceMm either side) within kCanineRidgeMm of the slice's top.
+// whose highest cells wander along the flat crest; seen along the occlusal axis, though, the
+// two cusp ridges run back lingually from the tip, so the crown's labial outline near its top
+// bulges most at the tip (the top of the labial ridge). Along the arch the tip is where the
+// region's cells within kCanineCapMm of its top reach farthest labially (the middle of the
+// kCanineBinMm slices whose outermost cell is within kCanineOutlineTolMm of the outermost), and
+// across at the middle of the cells of that slice (kCanineSliceMm either side) within
+// kCanineRidgeMm of the slice's top.
 constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
-constexpr double kCanineCapMm = 0.2;
+constexpr double kCanineCapMm = 0.5;
+constexpr double kCanineBinMm = 0.4;
+constexpr double kCanineOutlineTolMm = 0.2;
 constexpr double kCanineSliceMm = 0.4;
 constexpr double kCanineRidgeMm = 0.15;
 constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
@@ -208,9 +215,29 @@ std::vector<int> CellsNearTop(const HeightMap& map, double tol_mm, Keep keep,
   return near;
 }
 
-// The canine's tip (kCanineCapMm above): the middle of its region's top along the arch, then
-// the middle of that slice's highest cells across it, as the surface point seen there. Less sure
-// when the region's top lies at its end (the crest rises on out of the region).
+// The middle u of the kCanineBinMm slices of `cells` (non-empty) whose outermost cell (largest
+// v) lies within kCanineOutlineTolMm of the outermost of all.
+double LabialmostSlice(const ToothView& view, const std::vector<int>& cells) {
+  std::map<long, double> outer;  // slice index -> largest v
+  for (const int c : cells) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    const long k = std::lround(x.x() / kCanineBinMm);
+    const auto it = outer.find(k);
+    if (it == outer.end() || x.y() > it->second) outer[k] = x.y();
+  }
+  double most = -std::numeric_limits<double>::infinity();
+  for (const auto& [k, v] : outer) most = std::max(most, v);
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [k, v] : outer) {
+    if (v >= most - kCanineOutlineTolMm) sum += kCanineBinMm * static_cast<double>(k), ++n;
+  }
+  return sum / n;
+}
+
+// The canine's tip (kCanineCapMm above): the labialmost slice of its region's top along the
+// arch, then the middle of that slice's highest cells across it, as the surface point seen there.
+// Less sure when the region's top lies at its end (the crest rises on out of the region).
 void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const HeightMap& map = view.top;
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
@@ -220,9 +247,7 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
   const std::vector<int> cap = CellsNearTop(
       map, kCanineCapMm, [&](int c) { return u_of(c) >= u_lo && u_of(c) <= u_hi; }, &top_cell);
   if (cap.empty()) return;
-  double u_sum = 0.0;
-  for (const int c : cap) u_sum += u_of(c);
-  const double u_tip = u_sum / static_cast<double>(cap.size());
+  const double u_tip = LabialmostSlice(view, cap);
   int slice_top = -1;
   const std::vector<int> ridge = CellsNearTop(
       map, kCanineRidgeMm, [&](int c) { return std::abs(u_of(c) - u_tip) <= kCanineSliceMm; },
