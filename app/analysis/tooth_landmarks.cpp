@@ -19,6 +19,7 @@ using io::LandmarkType;
 constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
 constexpr double kCuspProminenceMm = 0.05;
 constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
+constexpr double kCutCells = 2.0;    // a peak this close to a segmented view's cut: the cut slope
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
 constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
@@ -155,9 +156,24 @@ Eigen::Vector3d PlateauCentre(const HeightMap& map, int peak) {
   return sum / n;
 }
 
+// The local maxima of the crown's view (HeightPeaks over kCuspRadiusMm). A segmented view is cut
+// out of the jaw's at the boundaries with its neighbours, so a slope rising on into the
+// neighbour (its marginal ridge, its cusp ridge) tops out at the cut: the peaks within
+// kCutCells cells of a cut end are left out (a cusp near a cut that falls off before it stays).
+std::vector<int> CrownPeaks(const ToothView& view) {
+  const double margin = kCutCells * view.top.cell;
+  std::vector<int> peaks;
+  for (const int c : HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm)) {
+    const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
+    const bool at_cut = view.u_mesial - u < margin || u - view.u_distal < margin;
+    if (view.whole_crown || !at_cut) peaks.push_back(c);
+  }
+  return peaks;
+}
+
 // Cusp tips: in each slot's region the highest peak, more sure when it is the region's top.
 void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
-  const std::vector<int> peaks = HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm);
+  const std::vector<int> peaks = CrownPeaks(view);
   for (const CuspSlot& slot : CuspSlots(view.jaw, io::ToothPosition(view.fdi))) {
     int best = -1;
     double region_top = -std::numeric_limits<double>::infinity();
