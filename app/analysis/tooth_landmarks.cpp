@@ -64,7 +64,11 @@ struct CuspSlot {
   Side side;
 };
 
-constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
+// A lower first molar's three buccal cusps: the mesiobuccal in the mesial third (u_rel above
+// kLowerMolarBuccalGroove), the distal (`db_cusp`), the smallest, in the distal quarter (below
+// kLowerMolarDistobuccalGroove; Wheeler: about a quarter of the crown's length), the distobuccal
+// (`middle_buccal_cusp`) between.
+constexpr double kLowerMolarBuccalGroove = 1.0 / 6.0, kLowerMolarDistobuccalGroove = -0.25;
 
 std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   const bool upper = jaw == io::Jaw::kUpper;
@@ -80,9 +84,10 @@ std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   std::vector<CuspSlot> slots = {{LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
                                  {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
   if (!upper && position == 6) {  // lower first molar: three buccal cusps
-    slots.push_back({LandmarkType::kMbCusp, kThird, 0.5, Side::kBuccal});
-    slots.push_back({LandmarkType::kMiddleBuccalCusp, -kThird, kThird, Side::kBuccal});
-    slots.push_back({LandmarkType::kDbCusp, -0.5, -kThird, Side::kBuccal});
+    slots.push_back({LandmarkType::kMbCusp, kLowerMolarBuccalGroove, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kMiddleBuccalCusp, kLowerMolarDistobuccalGroove,
+                     kLowerMolarBuccalGroove, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, kLowerMolarDistobuccalGroove, Side::kBuccal});
   } else {
     slots.push_back({LandmarkType::kMbCusp, 0.0, 0.5, Side::kBuccal});
     slots.push_back({LandmarkType::kDbCusp, -0.5, 0.0, Side::kBuccal});

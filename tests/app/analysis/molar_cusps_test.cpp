@@ -2,7 +2,9 @@
 // out of the jaw at its boundaries, not a whole crown): tooth coordinates are the 0.2 mm map's
 // plane coordinates (u = x mesial, v = y buccal, w = z along the occlusal axis). A slope rising
 // on into the neighbour tops out at the cut, a local maximum of the view that is no cusp: the
-// mesiobuccal cusp is the real one inside.
+// mesiobuccal cusp is the real one inside. The lower first molar's buccal cusps fall into their
+// slots by Wheeler's widths: the distobuccal one 0.2 of the length distal of the middle is the
+// `middle_buccal_cusp`, not the distal cusp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,6 +76,30 @@ TEST(MolarCusps, AMesiobuccalCuspNotTheSlopeRisingToTheCut) {
   ASSERT_NE(mb, nullptr);
   EXPECT_NEAR(mb->landmark.p.x(), 2.5, kMolarCuspTolMm) << mb->landmark.p.transpose();
   EXPECT_NEAR(mb->landmark.p.y(), 2.5, kMolarCuspTolMm) << mb->landmark.p.transpose();
+}
+
+// Lower first molar, 11 mm: buccal cusps at u_rel 0.27 (mesiobuccal), -0.2 (distobuccal) and
+// -0.4 (distal), the distobuccal one the highest; with thirds for slots it would be taken for
+// the distal cusp.
+TEST(MolarCusps, LowerFirstMolarBuccalCuspsByTheirWidths) {
+  const double length = 2.0 * kMolarHalfLengthMm;
+  const double mb_u = 0.27 * length, mbc_u = -0.2 * length, db_u = -0.4 * length;
+  const auto crown = [&](double u, double v) {
+    return 2.0 + MolarCusp(u, v, mb_u, 2.0, 1.2) + MolarCusp(u, v, mbc_u, 2.0, 1.5) +
+           MolarCusp(u, v, db_u, 0.5, 1.0) + MolarCusp(u, v, 2.0, -2.5, 1.4) +
+           MolarCusp(u, v, -2.5, -2.5, 1.4);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(46, io::Jaw::kLower, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  const ArchLandmark* mbc = FindCusp(found, io::LandmarkType::kMiddleBuccalCusp);
+  ASSERT_NE(mb, nullptr);
+  ASSERT_NE(mbc, nullptr);
+  EXPECT_NEAR(mb->landmark.p.x(), mb_u, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mbc->landmark.p.x(), mbc_u, kMolarCuspTolMm) << mbc->landmark.p.transpose();
+  // The buccal groove (their midpoint), which the molar relationship measures from.
+  EXPECT_NEAR(0.5 * (mb->landmark.p.x() + mbc->landmark.p.x()), 0.5 * (mb_u + mbc_u),
+              kMolarCuspTolMm);
 }
 
 }  // namespace
