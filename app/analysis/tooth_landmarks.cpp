@@ -21,7 +21,6 @@ constexpr double kCuspProminenceMm = 0.05;
 constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
 constexpr double kCutCells = 2.0;    // a peak this close to a segmented view's cut: the cut slope
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
-constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
 // Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare]. Its top there is a worn dome
@@ -284,25 +283,20 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
                       "middle of the highest cells of the canine's tip region"));
 }
 
-// The incisal edge's middle: the mean of the cells of the crown's middle slice within
-// kIncisalRidgeMm of its highest (a flat edge has no single highest point), the slice centred on
-// the middle of the incisal ridge (the crown's cells within kIncisalTopMm of its top) rather
-// than of the segmented span.
+// The incisal edge's middle: the mean of the cells of the crown's middle slice (kIncisalSliceShare
+// of its length either side of the middle of its span) within kIncisalRidgeMm of the slice's
+// highest (a flat edge has no single highest point). The middle of the span, not of the ridge's
+// highest cells: an edge sloping towards one corner (worn, tipped) has them at that end.
 void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
-  std::vector<double> ridge_u;
-  for (const int c : CellsNearTop(view.top, kIncisalTopMm, [](int) { return true; }))
-    ridge_u.push_back(u_of(c));
-  if (ridge_u.empty()) return;
-  const double u_mid = 0.5 * (Quantile(ridge_u, 0.05) + Quantile(ridge_u, 0.95));
   const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
   const std::vector<int> edge = CellsNearTop(
-      view.top, kIncisalRidgeMm, [&](int c) { return std::abs(u_of(c) - u_mid) <= half; });
+      view.top, kIncisalRidgeMm, [&](int c) { return std::abs(u_of(c) - box.u_mid) <= half; });
   if (edge.empty()) return;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const int c : edge) sum += view.top.Point_J(c);
   out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / static_cast<double>(edge.size()), 0.8,
-                      "middle of the incisal ridge's highest cells"));
+                      "middle of the highest cells of the incisal edge's middle slice"));
 }
 
 // The central fossa: the lowest cell of the crown's middle.
