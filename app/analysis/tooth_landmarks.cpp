@@ -18,8 +18,9 @@ using io::LandmarkType;
 
 constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
 constexpr double kCuspProminenceMm = 0.05;
-constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
-constexpr double kCutCells = 2.0;    // a peak this close to a segmented view's cut: the cut slope
+constexpr double kPlateauMm = 0.05;       // a cusp's plateau: cells this close to its peak's height
+constexpr double kFallbackSliceMm = 0.4;  // a cusp region without a peak: its middle slice
+constexpr double kCutCells = 2.0;  // a peak this close to a segmented view's cut: the cut slope
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
@@ -200,12 +201,25 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
         top_cell = c;
       }
     }
-    // A region without a local maximum (a canine's ending on its cusp ridge rising distally, a
-    // worn or merged cusp): its highest cell, less sure, for the cusps a relationship rests on
-    // (canine, molar, crossbite); the others are left out.
+    // A region without a local maximum (a worn or merged cusp, a cusp ridge sloping on through
+    // it): for the cusps a relationship rests on (molar, crossbite), less sure, the highest cell
+    // of its middle slice (kFallbackSliceMm either side of the slot's middle along the arch;
+    // the region's highest cell lies at its end, where the slope runs on into the next cusp);
+    // the others are left out.
     if (best < 0 && top_cell >= 0 && MeasuredCusp(slot.type)) {
-      out->push_back(Make(view, slot.type, view.top.Point_J(top_cell), 0.4,
-                          "highest point of the cusp's region (no local maximum in it)"));
+      const double u_middle = box.u_mid + 0.5 * (slot.u_lo + slot.u_hi) * box.length;
+      int middle_top = -1;
+      for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+        const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
+        if (!view.top.Filled(c) || !inside(c) || std::abs(u - u_middle) > kFallbackSliceMm)
+          continue;
+        if (middle_top < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                                  view.top.height[static_cast<std::size_t>(middle_top)])
+          middle_top = c;
+      }
+      out->push_back(Make(view, slot.type,
+                          view.top.Point_J(middle_top >= 0 ? middle_top : top_cell), 0.4,
+                          "highest point of the cusp region's middle (no local maximum in it)"));
       continue;
     }
     if (best < 0) continue;

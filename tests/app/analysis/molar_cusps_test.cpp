@@ -102,5 +102,31 @@ TEST(MolarCusps, LowerFirstMolarBuccalCuspsByTheirWidths) {
               kMolarCuspTolMm);
 }
 
+// Lower first molar, 11 mm, whose mesiobuccal cusp is worn into the ridge running down mesially
+// from the middle buccal cusp (0.03 mm per mm): its slot (u_rel above 1/6) has no local maximum
+// and its highest cell is at the slot's distal end, next to the other cusp. The cusp stands in
+// at the highest point of the slot's middle (u_rel 1/3), on the buccal ridge.
+TEST(MolarCusps, AWornCuspWithoutAPeakAtItsSlotsMiddle) {
+  constexpr double kRidgeV = 2.0;
+  const double length = 2.0 * kMolarHalfLengthMm;
+  const auto ridge = [](double u) {
+    const double cusp = 1.5 * std::exp(-(u + 1.1) * (u + 1.1) / (2.0 * 1.2 * 1.2));
+    return u > -1.1 ? std::max(cusp, 1.0 - 0.03 * u) : cusp;
+  };
+  const auto crown = [&](double u, double v) {
+    return 2.0 + ridge(u) * std::exp(-(v - kRidgeV) * (v - kRidgeV) / 2.0) +
+           MolarCusp(u, v, 2.0, -2.5, 1.4) + MolarCusp(u, v, -2.5, -2.5, 1.4);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(46, io::Jaw::kLower, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  ASSERT_NE(mb, nullptr);
+  // The slice is 0.4 mm either side of the middle; on the falling ridge its highest cell is at
+  // the slice's distal side.
+  EXPECT_NEAR(mb->landmark.p.x(), length / 3.0, 0.5) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mb->landmark.p.y(), kRidgeV, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_LT(mb->confidence, 0.5);
+}
+
 }  // namespace
 }  // namespace occlude::analysis
