@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "geometry_util.h"
 #include "occlusal_plane.h"
@@ -17,17 +18,24 @@ using io::LandmarkType;
 
 constexpr double kCuspRadiusMm = 1.0;  // a cusp tip is the highest point this far around
 constexpr double kCuspProminenceMm = 0.05;
-constexpr double kPlateauMm = 0.05;  // a cusp's plateau: cells this close to its peak's height
+constexpr double kPlateauMm = 0.05;       // a cusp's plateau: cells this close to its peak's height
+constexpr double kFallbackSliceMm = 0.4;  // a cusp region without a peak: its middle slice
+constexpr double kCutCells = 2.0;  // a peak this close to a segmented view's cut: the cut slope
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
-constexpr double kIncisalTopMm = 0.5;       // ... of the ridge this close to the crown's top
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
 // Wheeler): u_rel in [kCanineDistalShare, kCanineMesialShare]. Its top there is a worn dome
-// whose single highest cell wanders along the flat crest: the tip is at the middle (along the
-// arch) of the region's cells within kCanineCapMm of its top, and across at the middle of the
-// cells of that slice (kCanineSliceMm either side) within kCanineRidgeMm of the slice's top.
+// whose highest cells wander along the flat crest; seen along the occlusal axis, though, the
+// two cusp ridges run back lingually from the tip, so the crown's labial outline near its top
+// bulges most at the tip (the top of the labial ridge). Along the arch the tip is where the
+// region's cells within kCanineCapMm of its top reach farthest labially (the middle of the
+// kCanineBinMm slices whose outermost cell is within kCanineOutlineTolMm of the outermost), and
+// across at the middle of the cells of that slice (kCanineSliceMm either side) within
+// kCanineRidgeMm of the slice's top.
 constexpr double kCanineDistalShare = -0.1, kCanineMesialShare = 0.3;
-constexpr double kCanineCapMm = 0.2;
+constexpr double kCanineCapMm = 0.5;
+constexpr double kCanineBinMm = 0.4;
+constexpr double kCanineOutlineTolMm = 0.2;
 constexpr double kCanineSliceMm = 0.4;
 constexpr double kCanineRidgeMm = 0.15;
 constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
@@ -56,7 +64,11 @@ struct CuspSlot {
   Side side;
 };
 
-constexpr double kThird = 1.0 / 6.0;  // half of a third of the length
+// A lower first molar's three buccal cusps: the mesiobuccal in the mesial third (u_rel above
+// kLowerMolarBuccalGroove), the distal (`db_cusp`), the smallest, in the distal quarter (below
+// kLowerMolarDistobuccalGroove; Wheeler: about a quarter of the crown's length), the distobuccal
+// (`middle_buccal_cusp`) between.
+constexpr double kLowerMolarBuccalGroove = 1.0 / 6.0, kLowerMolarDistobuccalGroove = -0.25;
 
 std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   const bool upper = jaw == io::Jaw::kUpper;
@@ -72,9 +84,10 @@ std::vector<CuspSlot> CuspSlots(io::Jaw jaw, int position) {
   std::vector<CuspSlot> slots = {{LandmarkType::kMlCusp, 0.0, 0.5, Side::kLingual},
                                  {LandmarkType::kDlCusp, -0.5, 0.0, Side::kLingual}};
   if (!upper && position == 6) {  // lower first molar: three buccal cusps
-    slots.push_back({LandmarkType::kMbCusp, kThird, 0.5, Side::kBuccal});
-    slots.push_back({LandmarkType::kMiddleBuccalCusp, -kThird, kThird, Side::kBuccal});
-    slots.push_back({LandmarkType::kDbCusp, -0.5, -kThird, Side::kBuccal});
+    slots.push_back({LandmarkType::kMbCusp, kLowerMolarBuccalGroove, 0.5, Side::kBuccal});
+    slots.push_back({LandmarkType::kMiddleBuccalCusp, kLowerMolarDistobuccalGroove,
+                     kLowerMolarBuccalGroove, Side::kBuccal});
+    slots.push_back({LandmarkType::kDbCusp, -0.5, kLowerMolarDistobuccalGroove, Side::kBuccal});
   } else {
     slots.push_back({LandmarkType::kMbCusp, 0.0, 0.5, Side::kBuccal});
     slots.push_back({LandmarkType::kDbCusp, -0.5, 0.0, Side::kBuccal});
@@ -148,9 +161,24 @@ Eigen::Vector3d PlateauCentre(const HeightMap& map, int peak) {
   return sum / n;
 }
 
+// The local maxima of the crown's view (HeightPeaks over kCuspRadiusMm). A segmented view is cut
+// out of the jaw's at the boundaries with its neighbours, so a slope rising on into the
+// neighbour (its marginal ridge, its cusp ridge) tops out at the cut: the peaks within
+// kCutCells cells of a cut end are left out (a cusp near a cut that falls off before it stays).
+std::vector<int> CrownPeaks(const ToothView& view) {
+  const double margin = kCutCells * view.top.cell;
+  std::vector<int> peaks;
+  for (const int c : HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm)) {
+    const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
+    const bool at_cut = view.u_mesial - u < margin || u - view.u_distal < margin;
+    if (view.whole_crown || !at_cut) peaks.push_back(c);
+  }
+  return peaks;
+}
+
 // Cusp tips: in each slot's region the highest peak, more sure when it is the region's top.
 void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
-  const std::vector<int> peaks = HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm);
+  const std::vector<int> peaks = CrownPeaks(view);
   for (const CuspSlot& slot : CuspSlots(view.jaw, io::ToothPosition(view.fdi))) {
     int best = -1;
     double region_top = -std::numeric_limits<double>::infinity();
@@ -173,12 +201,25 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
         top_cell = c;
       }
     }
-    // A region without a local maximum (a canine's ending on its cusp ridge rising distally, a
-    // worn or merged cusp): its highest cell, less sure, for the cusps a relationship rests on
-    // (canine, molar, crossbite); the others are left out.
+    // A region without a local maximum (a worn or merged cusp, a cusp ridge sloping on through
+    // it): for the cusps a relationship rests on (molar, crossbite), less sure, the highest cell
+    // of its middle slice (kFallbackSliceMm either side of the slot's middle along the arch;
+    // the region's highest cell lies at its end, where the slope runs on into the next cusp);
+    // the others are left out.
     if (best < 0 && top_cell >= 0 && MeasuredCusp(slot.type)) {
-      out->push_back(Make(view, slot.type, view.top.Point_J(top_cell), 0.4,
-                          "highest point of the cusp's region (no local maximum in it)"));
+      const double u_middle = box.u_mid + 0.5 * (slot.u_lo + slot.u_hi) * box.length;
+      int middle_top = -1;
+      for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+        const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
+        if (!view.top.Filled(c) || !inside(c) || std::abs(u - u_middle) > kFallbackSliceMm)
+          continue;
+        if (middle_top < 0 || view.top.height[static_cast<std::size_t>(c)] >
+                                  view.top.height[static_cast<std::size_t>(middle_top)])
+          middle_top = c;
+      }
+      out->push_back(Make(view, slot.type,
+                          view.top.Point_J(middle_top >= 0 ? middle_top : top_cell), 0.4,
+                          "highest point of the cusp region's middle (no local maximum in it)"));
       continue;
     }
     if (best < 0) continue;
@@ -208,9 +249,29 @@ std::vector<int> CellsNearTop(const HeightMap& map, double tol_mm, Keep keep,
   return near;
 }
 
-// The canine's tip (kCanineCapMm above): the middle of its region's top along the arch, then
-// the middle of that slice's highest cells across it, as the surface point seen there. Less sure
-// when the region's top lies at its end (the crest rises on out of the region).
+// The middle u of the kCanineBinMm slices of `cells` (non-empty) whose outermost cell (largest
+// v) lies within kCanineOutlineTolMm of the outermost of all.
+double LabialmostSlice(const ToothView& view, const std::vector<int>& cells) {
+  std::map<long, double> outer;  // slice index -> largest v
+  for (const int c : cells) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    const long k = std::lround(x.x() / kCanineBinMm);
+    const auto it = outer.find(k);
+    if (it == outer.end() || x.y() > it->second) outer[k] = x.y();
+  }
+  double most = -std::numeric_limits<double>::infinity();
+  for (const auto& [k, v] : outer) most = std::max(most, v);
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [k, v] : outer) {
+    if (v >= most - kCanineOutlineTolMm) sum += kCanineBinMm * static_cast<double>(k), ++n;
+  }
+  return sum / n;
+}
+
+// The canine's tip (kCanineCapMm above): the labialmost slice of its region's top along the
+// arch, then the middle of that slice's highest cells across it, as the surface point seen there.
+// Less sure when the region's top lies at its end (the crest rises on out of the region).
 void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const HeightMap& map = view.top;
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
@@ -220,9 +281,7 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
   const std::vector<int> cap = CellsNearTop(
       map, kCanineCapMm, [&](int c) { return u_of(c) >= u_lo && u_of(c) <= u_hi; }, &top_cell);
   if (cap.empty()) return;
-  double u_sum = 0.0;
-  for (const int c : cap) u_sum += u_of(c);
-  const double u_tip = u_sum / static_cast<double>(cap.size());
+  const double u_tip = LabialmostSlice(view, cap);
   int slice_top = -1;
   const std::vector<int> ridge = CellsNearTop(
       map, kCanineRidgeMm, [&](int c) { return std::abs(u_of(c) - u_tip) <= kCanineSliceMm; },
@@ -238,25 +297,20 @@ void AddCanineTip(const ToothView& view, const CrownBox& box, std::vector<ArchLa
                       "middle of the highest cells of the canine's tip region"));
 }
 
-// The incisal edge's middle: the mean of the cells of the crown's middle slice within
-// kIncisalRidgeMm of its highest (a flat edge has no single highest point), the slice centred on
-// the middle of the incisal ridge (the crown's cells within kIncisalTopMm of its top) rather
-// than of the segmented span.
+// The incisal edge's middle: the mean of the cells of the crown's middle slice (kIncisalSliceShare
+// of its length either side of the middle of its span) within kIncisalRidgeMm of the slice's
+// highest (a flat edge has no single highest point). The middle of the span, not of the ridge's
+// highest cells: an edge sloping towards one corner (worn, tipped) has them at that end.
 void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const auto u_of = [&](int c) { return view.top_uvw[static_cast<std::size_t>(c)].x(); };
-  std::vector<double> ridge_u;
-  for (const int c : CellsNearTop(view.top, kIncisalTopMm, [](int) { return true; }))
-    ridge_u.push_back(u_of(c));
-  if (ridge_u.empty()) return;
-  const double u_mid = 0.5 * (Quantile(ridge_u, 0.05) + Quantile(ridge_u, 0.95));
   const double half = std::max(kIncisalSliceShare * box.length, view.top.cell);
   const std::vector<int> edge = CellsNearTop(
-      view.top, kIncisalRidgeMm, [&](int c) { return std::abs(u_of(c) - u_mid) <= half; });
+      view.top, kIncisalRidgeMm, [&](int c) { return std::abs(u_of(c) - box.u_mid) <= half; });
   if (edge.empty()) return;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const int c : edge) sum += view.top.Point_J(c);
   out->push_back(Make(view, LandmarkType::kIncisalEdge, sum / static_cast<double>(edge.size()), 0.8,
-                      "middle of the incisal ridge's highest cells"));
+                      "middle of the highest cells of the incisal edge's middle slice"));
 }
 
 // The central fossa: the lowest cell of the crown's middle.

@@ -1,9 +1,10 @@
 // DetectToothLandmarks' canine tip on analytic crowns (an upper canine, 13): its tooth view is
 // built here as the 0.2 mm height map of a densely sampled surface, so tooth coordinates are the
 // map's plane coordinates (u = x mesial, v = y labial, w = z along the occlusal axis). The tip
-// is the middle of the highest cells of its region, not its single highest cell: a worn canine
-// whose flat facet holds a small bump off its middle gives the facet's middle, and a crown tilted
-// by 17 deg about the lateral axis (one cusp ridge steep, the other gentle) gives its apex.
+// is where the top of its region reaches farthest labially, not its single highest cell: a worn
+// canine whose flat facet holds a small bump off its middle gives the facet's middle, one whose
+// facet runs on distally gives the apex, and a crown tilted by 17 deg about the lateral axis (one
+// cusp ridge steep, the other gentle) gives its apex.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -118,6 +119,23 @@ TEST(CanineTip, ApexOfACrownTiltedAboutTheLateralAxis) {
   const ArchLandmark tip = CanineTip(CanineView(pyramid, R));
   const Eigen::Vector3d want = R * kCanineApex;
   EXPECT_LT((tip.landmark.p - want).norm(), kCanineTipTolMm) << tip.landmark.p.transpose();
+}
+
+// Worn flat 0.6 mm below its apex with a steep mesial ridge (0.7) and a gentle distal one (0.35):
+// the facet runs on 1.7 mm distally of the apex but only 0.9 mm mesially, so its middle lies
+// 0.43 mm distal of the apex, while its labial outline (and that of the cells below it) still
+// bulges most at the apex's position along the arch: the tip is there.
+TEST(CanineTip, TopOfTheLabialRidgeNotTheMiddleOfACrestRunningOnDistally) {
+  constexpr double kWearMm = 0.6, kMesialSlope = 0.7, kDistalSlope = 0.35;
+  const auto worn = [&](double u, double v) {
+    return std::min(CaninePyramid(u, v, kMesialSlope, kDistalSlope, 0.8, 0.8), -kWearMm);
+  };
+  const double facet_middle =
+      kCanineApex.x() + 0.5 * (kWearMm / kMesialSlope - kWearMm / kDistalSlope);
+  ASSERT_LT(facet_middle, kCanineApex.x() - 2.0 * kCanineTipTolMm);
+  const ArchLandmark tip = CanineTip(CanineView(worn, Eigen::Matrix3d::Identity()));
+  EXPECT_NEAR(tip.landmark.p.x(), kCanineApex.x(), kCanineTipTolMm) << tip.landmark.p.transpose();
+  EXPECT_NEAR(tip.landmark.p.z(), -kWearMm, kCanineTipTolMm) << tip.landmark.p.transpose();
 }
 
 }  // namespace

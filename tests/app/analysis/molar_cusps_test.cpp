@@ -1,0 +1,132 @@
+// DetectToothLandmarks' molar cusps on analytic crowns seen as a segmented scan's tooth view (cut
+// out of the jaw at its boundaries, not a whole crown): tooth coordinates are the 0.2 mm map's
+// plane coordinates (u = x mesial, v = y buccal, w = z along the occlusal axis). A slope rising
+// on into the neighbour tops out at the cut, a local maximum of the view that is no cusp: the
+// mesiobuccal cusp is the real one inside. The lower first molar's buccal cusps fall into their
+// slots by Wheeler's widths: the distobuccal one 0.2 of the length distal of the middle is the
+// `middle_buccal_cusp`, not the distal cusp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "analysis/tooth_landmarks.h"
+
+namespace occlude::analysis {
+namespace {
+
+constexpr double kMolarCellMm = 0.2;
+constexpr double kMolarHalfLengthMm = 5.5;  // the cut ends: u = -5.5 (distal) and 5.5 (mesial)
+constexpr double kMolarHalfWidthMm = 5.0;
+constexpr double kMolarCuspTolMm = 0.3;  // a cusp's peak: within a cell or so of its design
+
+// The segmented view of w = surface(u, v) over the span |u| <= 5.5, |v| <= 5: each cell's height
+// the surface at its centre.
+ToothView MolarView(int fdi, io::Jaw jaw, const std::function<double(double, double)>& surface) {
+  ToothView view;
+  view.fdi = fdi;
+  view.jaw = jaw;
+  view.u_mesial = kMolarHalfLengthMm;
+  view.u_distal = -kMolarHalfLengthMm;
+  view.whole_crown = false;
+  HeightMap& map = view.top;
+  map.cell = kMolarCellMm;
+  map.corner = {-kMolarHalfLengthMm, -kMolarHalfWidthMm};
+  map.nx = static_cast<int>(std::lround(2.0 * kMolarHalfLengthMm / map.cell));
+  map.ny = static_cast<int>(std::lround(2.0 * kMolarHalfWidthMm / map.cell));
+  map.height.assign(static_cast<std::size_t>(map.nx * map.ny), 0.0);
+  map.triangle.assign(map.height.size(), -1);
+  view.top_uvw.assign(map.height.size(), Eigen::Vector3d::Zero());
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    const Eigen::Vector2d q = map.Centre(c);
+    map.height[static_cast<std::size_t>(c)] = surface(q.x(), q.y());
+    view.top_uvw[static_cast<std::size_t>(c)] << q, map.height[static_cast<std::size_t>(c)];
+  }
+  return view;
+}
+
+// A rounded cusp of height h at (u0, v0), 1.2 mm wide.
+double MolarCusp(double u, double v, double u0, double v0, double h) {
+  const double r2 = (u - u0) * (u - u0) + (v - v0) * (v - v0);
+  return h * std::exp(-r2 / (2.0 * 1.2 * 1.2));
+}
+
+const ArchLandmark* FindCusp(const std::vector<ArchLandmark>& landmarks, io::LandmarkType type) {
+  for (const ArchLandmark& l : landmarks) {
+    if (l.landmark.type == type) return &l;
+  }
+  return nullptr;
+}
+
+// Upper first molar: four cusps 1.5 mm high on a 2 mm base, and from u = 4 mesially the
+// neighbour's marginal ridge rising to 3.7 mm at the cut, above the cusps: the view's highest
+// point, at its mesial end, is no cusp.
+TEST(MolarCusps, AMesiobuccalCuspNotTheSlopeRisingToTheCut) {
+  const auto crown = [](double u, double v) {
+    const double cusps = MolarCusp(u, v, 2.5, 2.5, 1.5) + MolarCusp(u, v, -2.5, 2.5, 1.5) +
+                         MolarCusp(u, v, 2.0, -2.5, 1.5) + MolarCusp(u, v, -2.5, -2.5, 1.5);
+    return 2.0 + cusps + (u > 4.0 ? 1.5 * (u - 4.0) : 0.0);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(16, io::Jaw::kUpper, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  ASSERT_NE(mb, nullptr);
+  EXPECT_NEAR(mb->landmark.p.x(), 2.5, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mb->landmark.p.y(), 2.5, kMolarCuspTolMm) << mb->landmark.p.transpose();
+}
+
+// Lower first molar, 11 mm: buccal cusps at u_rel 0.27 (mesiobuccal), -0.2 (distobuccal) and
+// -0.4 (distal), the distobuccal one the highest; with thirds for slots it would be taken for
+// the distal cusp.
+TEST(MolarCusps, LowerFirstMolarBuccalCuspsByTheirWidths) {
+  const double length = 2.0 * kMolarHalfLengthMm;
+  const double mb_u = 0.27 * length, mbc_u = -0.2 * length, db_u = -0.4 * length;
+  const auto crown = [&](double u, double v) {
+    return 2.0 + MolarCusp(u, v, mb_u, 2.0, 1.2) + MolarCusp(u, v, mbc_u, 2.0, 1.5) +
+           MolarCusp(u, v, db_u, 0.5, 1.0) + MolarCusp(u, v, 2.0, -2.5, 1.4) +
+           MolarCusp(u, v, -2.5, -2.5, 1.4);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(46, io::Jaw::kLower, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  const ArchLandmark* mbc = FindCusp(found, io::LandmarkType::kMiddleBuccalCusp);
+  ASSERT_NE(mb, nullptr);
+  ASSERT_NE(mbc, nullptr);
+  EXPECT_NEAR(mb->landmark.p.x(), mb_u, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mbc->landmark.p.x(), mbc_u, kMolarCuspTolMm) << mbc->landmark.p.transpose();
+  // The buccal groove (their midpoint), which the molar relationship measures from.
+  EXPECT_NEAR(0.5 * (mb->landmark.p.x() + mbc->landmark.p.x()), 0.5 * (mb_u + mbc_u),
+              kMolarCuspTolMm);
+}
+
+// Lower first molar, 11 mm, whose mesiobuccal cusp is worn into the ridge running down mesially
+// from the middle buccal cusp (0.03 mm per mm): its slot (u_rel above 1/6) has no local maximum
+// and its highest cell is at the slot's distal end, next to the other cusp. The cusp stands in
+// at the highest point of the slot's middle (u_rel 1/3), on the buccal ridge.
+TEST(MolarCusps, AWornCuspWithoutAPeakAtItsSlotsMiddle) {
+  constexpr double kRidgeV = 2.0;
+  const double length = 2.0 * kMolarHalfLengthMm;
+  const auto ridge = [](double u) {
+    const double cusp = 1.5 * std::exp(-(u + 1.1) * (u + 1.1) / (2.0 * 1.2 * 1.2));
+    return u > -1.1 ? std::max(cusp, 1.0 - 0.03 * u) : cusp;
+  };
+  const auto crown = [&](double u, double v) {
+    return 2.0 + ridge(u) * std::exp(-(v - kRidgeV) * (v - kRidgeV) / 2.0) +
+           MolarCusp(u, v, 2.0, -2.5, 1.4) + MolarCusp(u, v, -2.5, -2.5, 1.4);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(46, io::Jaw::kLower, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  ASSERT_NE(mb, nullptr);
+  // The slice is 0.4 mm either side of the middle; on the falling ridge its highest cell is at
+  // the slice's distal side.
+  EXPECT_NEAR(mb->landmark.p.x(), length / 3.0, 0.5) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mb->landmark.p.y(), kRidgeV, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_LT(mb->confidence, 0.5);
+}
+
+}  // namespace
+}  // namespace occlude::analysis
