@@ -209,7 +209,7 @@ struct RegionSelector::Impl {
 
 RegionSelector::RegionSelector(std::shared_ptr<const io::TriangleMesh> lower_L,
                                std::shared_ptr<const io::TriangleMesh> upper_U,
-                               RegionOfInterestRequest request)
+                               const RegionOfInterestRequest& request)
     : impl_(std::make_unique<Impl>()) {
   if (!lower_L || !upper_U) throw std::invalid_argument("ComputeRegionOfInterest: null mesh");
   const auto start = std::chrono::steady_clock::now();

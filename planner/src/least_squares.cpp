@@ -4,6 +4,7 @@
 #include "occlude/planner/least_squares.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "least_squares_internal.h"
@@ -52,8 +53,22 @@ Vector6d XFromAmbient(const Vector6d& z) {
 ResidualMemo::ResidualMemo(const SurfaceResiduals::Impl& model)
     : model_(model), pose_(Vector6d::Zero()), samples_(model.area.size()) {}
 
+namespace {
+// The same 6 doubles bit for bit (a point Ceres asks for again is the same point, and -0.0 or a
+// NaN is not taken for another value).
+bool SameBits6(const double* a, const double* b) {
+  for (int k = 0; k < 6; ++k) {
+    std::uint64_t x = 0, y = 0;
+    std::memcpy(&x, a + k, sizeof x);
+    std::memcpy(&y, b + k, sizeof y);
+    if (x != y) return false;
+  }
+  return true;
+}
+}  // namespace
+
 const ResidualMemo::Sample& ResidualMemo::At(std::size_t i, const double* z, bool jacobians) {
-  if (point_ == 0 || std::memcmp(z, pose_.z.data(), sizeof(double) * 6) != 0) {
+  if (point_ == 0 || !SameBits6(z, pose_.z.data())) {
     pose_ = SurfaceResiduals::Impl::PoseAt(Eigen::Map<const Vector6d>(z));
     ++point_;
   }

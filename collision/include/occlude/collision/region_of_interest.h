@@ -87,7 +87,8 @@ class RegionSelector {
  public:
   /// `request.band_mm` is ignored. Throws as ComputeRegionOfInterest.
   RegionSelector(std::shared_ptr<const io::TriangleMesh> lower_L,
-                 std::shared_ptr<const io::TriangleMesh> upper_U, RegionOfInterestRequest request);
+                 std::shared_ptr<const io::TriangleMesh> upper_U,
+                 const RegionOfInterestRequest& request);
   ~RegionSelector();
   RegionSelector(RegionSelector&&) noexcept;
   RegionSelector& operator=(RegionSelector&&) noexcept;
