@@ -1,6 +1,9 @@
 // The report of one pose as files (see report_writer.h).
 #include "report/report_writer.h"
 
+#include <atomic>
+#include <exception>
+#include <functional>
 #include <thread>
 
 #include "base/output_files.h"
@@ -49,14 +52,33 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   const int w = config.report.image_width_px;
   std::string png[4];
   {
-    // The two maps on one thread, the two views on another (each renders independently).
-    std::thread views([&] {
-      png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w));
-      png[3] = EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
-    });
-    png[0] = EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image);
-    png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image);
-    views.join();
+    // Four independent images on two workers, the slowest first (a side view rasterizes both
+    // whole jaws, a map one jaw's occlusal side): each worker takes the next image left.
+    const std::function<std::string()> images[4] = {
+        [&] { return EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
+        [&] {
+          return EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
+        },
+        [&] { return EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image); },
+        [&] { return EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image); }};
+    const int slot[4] = {2, 3, 0, 1};  // png[]: lower map, upper map, frontal, lateral
+    std::atomic<int> next{0};
+    std::exception_ptr failed[4];
+    auto worker = [&] {
+      for (int i = next++; i < 4; i = next++) {
+        try {
+          png[slot[i]] = images[i]();
+        } catch (...) {
+          failed[i] = std::current_exception();
+        }
+      }
+    };
+    std::thread helper(worker);
+    worker();
+    helper.join();
+    for (const std::exception_ptr& e : failed) {
+      if (e) std::rethrow_exception(e);
+    }
   }
   analysis.timings_s.emplace_back("render", NowSeconds() - t0);
   ReportInputs in;
