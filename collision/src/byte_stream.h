@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -51,10 +52,14 @@ class ByteWriter {
 
 /// Reads what a ByteWriter wrote; any read past the end, or an array longer than the bytes
 /// left, throws OracleFileError(kCorrupt) naming the section.
+/// Called with the bytes an array was copied out of, when the reader's source may let them go
+/// (a file mapping drops its pages: the run does not hold a file and its copy at once).
+using ReleaseBytes = std::function<void(const char* data, std::size_t size)>;
+
 class ByteReader {
  public:
-  ByteReader(std::string_view bytes, std::string section)
-      : bytes_(bytes), section_(std::move(section)) {}
+  ByteReader(std::string_view bytes, std::string section, const ReleaseBytes* release = nullptr)
+      : bytes_(bytes), section_(std::move(section)), release_(release) {}
 
   template <typename T>
   T Value() {
@@ -74,6 +79,8 @@ class ByteReader {
     if (values->empty()) return;  // data() may be null: no memcpy of nothing from it
     std::memcpy(static_cast<void*>(values->data()), bytes_.data() + at_,
                 values->size() * sizeof(T));
+    if (release_ != nullptr && *release_)
+      (*release_)(bytes_.data() + at_, values->size() * sizeof(T));
     at_ += values->size() * sizeof(T);
   }
   /// An Array of `expected` elements (else kCorrupt: the sizes disagree).
@@ -102,6 +109,7 @@ class ByteReader {
   }
   std::string_view bytes_;
   std::string section_;
+  const ReleaseBytes* release_;
   std::size_t at_ = 0;
 };
 

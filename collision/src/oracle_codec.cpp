@@ -351,14 +351,14 @@ void OracleCodec::PutSection(const JawOracle& o, std::size_t index, ByteWriter* 
 JawOracle OracleCodec::Assemble(const std::vector<std::string_view>& sections,
                                 std::shared_ptr<const io::TriangleMesh> lower_L,
                                 std::shared_ptr<const io::TriangleMesh> upper_U,
-                                const OracleOptions& options) {
+                                const OracleOptions& options, const ReleaseBytes* release) {
   JawOracle o;
   o.options_ = options;
   o.lower_.mesh_ = lower_L;
   o.upper_.mesh_ = std::move(upper_U);
   o.sdf_.mesh_ = std::move(lower_L);
   std::vector<ByteReader> in;
-  for (std::size_t i = 0; i < Tags().size(); ++i) in.emplace_back(sections[i], Tags()[i]);
+  for (std::size_t i = 0; i < Tags().size(); ++i) in.emplace_back(sections[i], Tags()[i], release);
   Get(&in[0], &o.lower_);
   Get(&in[1], &o.upper_);
   Get(&in[2], &o.sdf_);

@@ -19,11 +19,12 @@ struct OracleCodec {
   /// The payload of section `index` (of Tags()).
   static void PutSection(const JawOracle& oracle, std::size_t index, ByteWriter* out);
   /// The oracle of the sections' payloads (one per tag) over these meshes; `options` are the
-  /// ones the key was checked against. Throws OracleFileError(kCorrupt).
+  /// ones the key was checked against; `release` (optional) is told of every array's bytes
+  /// once copied. Throws OracleFileError(kCorrupt).
   static JawOracle Assemble(const std::vector<std::string_view>& sections,
                             std::shared_ptr<const io::TriangleMesh> lower_L,
                             std::shared_ptr<const io::TriangleMesh> upper_U,
-                            const OracleOptions& options);
+                            const OracleOptions& options, const ReleaseBytes* release = nullptr);
   static const OracleOptions& Options(const JawOracle& oracle) { return oracle.options_; }
 
   static void Put(const SphereTree& tree, ByteWriter* out);

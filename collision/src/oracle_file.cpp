@@ -7,7 +7,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <system_error>
@@ -206,9 +208,13 @@ std::string SaveOracle(const JawOracle& oracle) {
   return out;
 }
 
-JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
-                     std::shared_ptr<const io::TriangleMesh> upper_U,
-                     const OracleOptions& options) {
+namespace {
+
+// LoadOracle, telling `release` (optional) of the bytes it is done with: the payload in chunks as
+// it is checksummed, then every array once copied out.
+JawOracle LoadReleasing(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
+                        std::shared_ptr<const io::TriangleMesh> upper_U,
+                        const OracleOptions& options, const detail::ReleaseBytes* release) {
   CheckMesh(lower_L, "lower");
   CheckMesh(upper_U, "upper");
   const Header h = DecodeHeader(bytes);
@@ -216,10 +222,25 @@ JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleM
     Fail(OracleFileProblem::kMismatch,
          "saved for other meshes or options (key " + io::HashHex(h.key) + ")");
   }
-  if (io::Hash64(bytes.data() + kHeaderBytes, bytes.size() - kHeaderBytes) != h.payload_checksum)
+  constexpr std::size_t kChunk = std::size_t{16} << 20;
+  io::Hasher64 payload;
+  for (std::size_t at = kHeaderBytes; at < bytes.size(); at += kChunk) {
+    const std::size_t n = std::min(kChunk, bytes.size() - at);
+    payload.Add(bytes.data() + at, n);
+    if (release != nullptr) (*release)(bytes.data() + at, n);
+  }
+  if (payload.Finish() != h.payload_checksum)
     Fail(OracleFileProblem::kCorrupt, "corrupt: the payload's checksum does not match");
   return detail::OracleCodec::Assemble(CheckedPayloads(bytes, h), std::move(lower_L),
-                                       std::move(upper_U), options);
+                                       std::move(upper_U), options, release);
+}
+
+}  // namespace
+
+JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
+                     std::shared_ptr<const io::TriangleMesh> upper_U,
+                     const OracleOptions& options) {
+  return LoadReleasing(bytes, std::move(lower_L), std::move(upper_U), options, nullptr);
 }
 
 std::vector<OracleFileSection> DescribeOracleBytes(std::string_view bytes) {
@@ -235,8 +256,10 @@ void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file) 
 
 namespace {
 
-// A read-only private mapping of a whole file, its pages read in up front (MAP_POPULATE: one
-// pass over the file instead of a fault per page); unmapped when the object dies.
+// A read-only private mapping of a whole file, read in order (MADV_SEQUENTIAL: read ahead);
+// Release drops the whole pages of a range already read (they stay in the page cache, so a
+// second read is a minor fault), so that a loaded oracle and its file are not resident at once;
+// unmapped when the object dies.
 class MappedFile {
  public:
   explicit MappedFile(const std::filesystem::path& file) {
@@ -250,7 +273,8 @@ class MappedFile {
     }
     size_ = static_cast<std::size_t>(status.st_size);
     if (size_ > 0) {
-      data_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      data_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+      if (data_ != MAP_FAILED) ::madvise(data_, size_, MADV_SEQUENTIAL);
     }
     const int error = errno;
     ::close(fd);
@@ -264,6 +288,16 @@ class MappedFile {
   std::string_view bytes() const {
     return size_ == 0 ? std::string_view()
                       : std::string_view(static_cast<const char*>(data_), size_);
+  }
+  /// Drops the resident pages that lie wholly inside [data, data + size) (a range of bytes()).
+  void Release(const char* data, std::size_t size) const {
+    static const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+    // Offsets from the mapping's start (page aligned), so the pointer stays one of the mapping's.
+    char* const base = static_cast<char*>(data_);
+    const auto begin = static_cast<std::uintptr_t>(data - base);
+    const std::uintptr_t first = (begin + page - 1) / page * page;
+    const std::uintptr_t last = (begin + size) / page * page;
+    if (last > first) ::madvise(base + first, last - first, MADV_DONTNEED);
   }
 
  private:
@@ -283,8 +317,11 @@ JawOracle LoadOracleFile(const std::filesystem::path& file,
                          std::shared_ptr<const io::TriangleMesh> upper_U,
                          const OracleOptions& options) {
   const MappedFile mapped(file);
+  const detail::ReleaseBytes release = [&mapped](const char* data, std::size_t size) {
+    mapped.Release(data, size);
+  };
   try {
-    return LoadOracle(mapped.bytes(), std::move(lower_L), std::move(upper_U), options);
+    return LoadReleasing(mapped.bytes(), std::move(lower_L), std::move(upper_U), options, &release);
   } catch (const OracleFileError& e) {
     Fail(e.problem(), file.string() + ": " + e.what());
   }
