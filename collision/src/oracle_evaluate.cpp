@@ -26,9 +26,18 @@
 
 namespace occlude::collision {
 
-void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const {
+void JawOracle::AddDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+                        const OracleRequest& request, OracleResult* result) const {
+  ++result->deep_samples;
+  if (request.keep_points)
+    result->deep_points.push_back(
+        {p_L, -(request.penetration_search_mm + sdf_.band_mm()), area, part});
+}
+
+void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+                            const OracleRequest& request, OracleResult* result) const {
   // Outside the measured range: deep inside the lower jaw, or simply far away.
-  if (LowerInterior(p_L)) ++result->deep_samples;
+  if (LowerInterior(p_L)) AddDeep(p_L, area, part, request, result);
 }
 
 void JawOracle::CountNestedPieces(const Eigen::Isometry3d& X_LU, OracleResult* result) const {
@@ -105,7 +114,9 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
       const Eigen::Array4f local = q->cell.local + m0 * o.x() + m1 * o.y() + m2 * o.z();
       double d = 0.0;
       if (!q->sampler.CellValue(q->cell.base, local, &d)) {
-        if (classify_unknown) CountIfDeep(q->X_LU * voxel_centroid_U_[v].cast<double>(), result);
+        if (classify_unknown)
+          CountIfDeep(q->X_LU * voxel_centroid_U_[v].cast<double>(),
+                      static_cast<double>(voxel_area_[v]), voxel_part_[v], request, result);
         continue;
       }
       result->min_distance_mm = std::min(result->min_distance_mm, d);
@@ -122,7 +133,8 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
       const Eigen::Vector3d p_L = q->X_LU * sample_p_U_[i].cast<double>();
       SignedDistanceSample s;
       if (!sdf_.Exact(p_L, q->reach, &s)) {
-        if (classify_unknown) CountIfDeep(p_L, result);
+        if (classify_unknown)
+          CountIfDeep(p_L, static_cast<double>(sample_area_[i]), sample_part_[i], request, result);
         continue;
       }
       result->min_distance_mm = std::min(result->min_distance_mm, s.distance);
@@ -197,9 +209,11 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
           voxel_side_found = true;
         }
         if (voxel_side == UnknownSide::kInterior) {
-          ++result->deep_samples;
+          AddDeep(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]),
+                  sample_part_[i], request, result);
         } else if (voxel_side == UnknownSide::kMaybeInterior) {
-          CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), result);
+          CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]),
+                      sample_part_[i], request, result);
         }
         continue;
       }

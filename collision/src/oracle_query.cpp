@@ -48,6 +48,7 @@ void Reset(OracleResult* r, AccuracyLevel level, std::size_t num_parts) {
   r->parts.assign(num_parts, PartTotals{});
   r->contacts.clear();
   r->penetrations.clear();
+  r->deep_points.clear();
   r->residuals.clear();
   r->cells = r->samples_evaluated = r->node_tests = 0;
 }

@@ -82,31 +82,42 @@ PoseEvaluation EvaluatePose(const OracleStage& stage, const Eigen::Isometry3d& X
   e.anterior_share = r.anterior_share;
   e.posterior_share = r.posterior_share;
   e.parts = r.parts;
-  // Spike patches first (linked at 2.5 sample spacings), then the deepest-area budget.
+  // Spike patches first (linked at 2.5 sample spacings), then the deepest-area budget. The
+  // deep samples the oracle lists join the patches at the depth they are at least at, as
+  // EvaluateSet's do: the tip of a spike pressed beyond the measured depth stays a spike.
+  const double deep_depth = q.penetration_search_mm + stage.oracle->lower_sdf().band_mm();
   std::vector<PenetratingSample> pen;
-  pen.reserve(r.penetrations.size());
+  pen.reserve(r.penetrations.size() + r.deep_points.size());
   for (const auto& p : r.penetrations) pen.push_back({p.p_L, -p.distance_mm, p.area_mm2});
+  for (const auto& p : r.deep_points) pen.push_back({p.p_L, deep_depth, p.area_mm2});
   const std::vector<bool> spike =
       SpikeMembersForMeasure(pen, 2.5 * stage.oracle->sample_spacing_mm(), SpikePatchCap(request),
                              request.max_penetration_mm, SpikeShallowMm(request));
+  const std::size_t measured = r.penetrations.size();
+  auto point = [&r, measured](std::size_t i) -> const collision::SurfacePoint& {
+    return i < measured ? r.penetrations[i] : r.deep_points[i - measured];
+  };
   std::vector<std::pair<double, double>> depth_area;
   std::vector<std::size_t> kept;
+  std::size_t deep_spikes = 0;
   for (std::size_t i = 0; i < pen.size(); ++i) {
     if (spike[i]) {
-      const auto& p = r.penetrations[i];
+      const auto& p = point(i);
       e.outliers.push_back({p.p_L, pen[i].depth_mm, p.area_mm2, p.part, true});
+      deep_spikes += i >= measured ? 1 : 0;
       continue;
     }
-    depth_area.emplace_back(pen[i].depth_mm, pen[i].area_mm2);
-    kept.push_back(i);
+    if (i < measured) {  // the deep ones that are no spike stay counted as deep
+      depth_area.emplace_back(pen[i].depth_mm, pen[i].area_mm2);
+      kept.push_back(i);
+    }
   }
   const double mean_area =
       r.penetrations.empty() ? 0.1
                              : r.penetration_area_mm2 / static_cast<double>(r.penetrations.size());
-  const double deep_depth = q.penetration_search_mm + stage.oracle->lower_sdf().band_mm();
   std::vector<std::size_t> outliers;
   e.constrained_penetration_mm = RobustPenetration(
-      depth_area, r.deep_samples, deep_depth, mean_area,
+      depth_area, r.deep_samples - deep_spikes, deep_depth, mean_area,
       OutlierBudget(request, r.contact_area_mm2 + r.penetration_area_mm2), &outliers);
   if (r.deep_samples > 0) e.max_penetration_mm = std::max(e.max_penetration_mm, deep_depth);
   for (const std::size_t k : outliers) {

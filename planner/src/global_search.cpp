@@ -11,6 +11,7 @@
 
 #include "global_scan.h"
 #include "occlude/assert.h"
+#include "occlude/planner/least_squares.h"
 
 namespace occlude::planner {
 
@@ -110,14 +111,31 @@ detail::Candidates RefineBasins(const detail::SearchContext& c, const GlobalRequ
   return out;
 }
 
+// The seat cost of the last stage's samples with the jaws apart: every sample beyond the
+// attraction window (the ceiling of Proposal::seat_cost without penetration).
+double OpenSeatCost(const detail::SearchContext& c) {
+  const OracleStage& last = c.schedule->back();
+  const detail::SampleSet& samples = c.sets.back();
+  const ResidualSettings seat = detail::SeatSettings(last, *c.problem->request);
+  double cost = 0.0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    cost += SeatSampleCost(seat.window_mm, samples.area_mm2[i],
+                           samples.facing[i] >= seat.attraction_min_facing, seat);
+  }
+  return cost;
+}
+
 // The distinct seats of the candidates (feasible first, best seat cost first) with their shifts.
-std::vector<GlobalProposal> DistinctSeats(const detail::Problem& problem, const GlobalRequest& g,
+std::vector<GlobalProposal> DistinctSeats(const detail::SearchContext& c, const GlobalRequest& g,
                                           const detail::Candidates& candidates,
                                           const Eigen::Isometry3d& X_aligned) {
+  const detail::Problem& problem = *c.problem;
   const int all = static_cast<int>(candidates.proposals.size());
+  const double open_cost = OpenSeatCost(c);
   std::vector<GlobalProposal> seats;
   for (Proposal& p : detail::BestDistinct(candidates.proposals, problem, all)) {
     GlobalProposal gp;
+    gp.seat_depth = std::max(0.0, open_cost - p.seat_cost);
     gp.from_aligned = ShiftBetween(X_aligned, p.X_LU, problem.pivot_L, g.lower_L);
     gp.from_given = ShiftBetween(g.local.X_LU_start, p.X_LU, problem.pivot_L, g.lower_L);
     gp.basin = p.start_index;
@@ -130,8 +148,7 @@ std::vector<GlobalProposal> DistinctSeats(const detail::Problem& problem, const 
 // The seats ranked by the request's ranking, and the warnings they call for.
 void Report(const detail::SearchContext& c, const GlobalRequest& g,
             const detail::Candidates& candidates, GlobalResult* result) {
-  std::vector<GlobalProposal> seats =
-      DistinctSeats(*c.problem, g, candidates, result->alignment.X_LU);
+  std::vector<GlobalProposal> seats = DistinctSeats(c, g, candidates, result->alignment.X_LU);
   RankedSeats ranked = RankSeats(std::move(seats), g.ranking, g.local.max_proposals);
   result->proposals = std::move(ranked.proposals);
   result->excluded = std::move(ranked.excluded);

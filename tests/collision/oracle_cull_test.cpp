@@ -65,6 +65,7 @@ Work CompareAt(const JawOracle& oracle, const Isometry3d& X, OracleRequest req) 
   }
   ExpectSamePoints(culled.contacts, full.contacts);
   ExpectSamePoints(culled.penetrations, full.penetrations);
+  ExpectSamePoints(culled.deep_points, full.deep_points);
   EXPECT_EQ(culled.residuals.size(), full.residuals.size());
   for (std::size_t i = 0; i < std::min(culled.residuals.size(), full.residuals.size()); ++i) {
     EXPECT_EQ(culled.residuals[i].distance_mm, full.residuals[i].distance_mm) << i;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -285,6 +286,13 @@ TEST(GlobalSearchTest, AClinicalJudgeRanksTheSeats) {
   g.ranking = MolarRanking(0.0, false);
   const GlobalResult r = GlobalSearch(test::CoarseToFine(), g);
   ASSERT_GE(r.proposals.size(), 2u);
+  // Each seat's depth is the seat objective's drop from the jaws apart: positive, and in the
+  // opposite order of the seat cost (one sample set, one open cost).
+  for (const GlobalProposal& p : r.proposals) {
+    EXPECT_GT(p.seat_depth, 0.0);
+    EXPECT_NEAR(p.seat_depth + p.proposal.seat_cost,
+                r.proposals.front().seat_depth + r.proposals.front().proposal.seat_cost, 1e-9);
+  }
   const GlobalProposal& first = r.proposals.front();
   const PoseError e = ToDesign(first.proposal.X_LU);
   EXPECT_LE(e.translation_mm, kBarMm);
@@ -295,6 +303,14 @@ TEST(GlobalSearchTest, AClinicalJudgeRanksTheSeats) {
   for (const GlobalProposal& p : r.proposals)
     class2_found |= std::abs(MolarOffset(p.proposal.X_LU) - 7.0) <= 1.5;
   ASSERT_TRUE(class2_found) << "the Class II seat is not among the proposals";
+  // It competes on the penalty: deep enough (62 % of the designed bite's depth here).
+  double deepest = 0.0;
+  for (const GlobalProposal& p : r.proposals) deepest = std::max(deepest, p.seat_depth);
+  for (const GlobalProposal& p : r.proposals) {
+    if (std::abs(MolarOffset(p.proposal.X_LU) - 7.0) <= 1.5) {
+      EXPECT_GE(p.seat_depth, SeatRanking{}.comparable_depth * deepest);
+    }
+  }
 
   const RankedSeats class2 = RankSeats(r.proposals, MolarRanking(7.0, false), 8);
   EXPECT_NEAR(MolarOffset(class2.proposals.front().proposal.X_LU), 7.0, 1.5);

@@ -1,7 +1,7 @@
 // RankSeats on hand-made seats: without a judge the order is kept; with one,
 // the inadmissible seats are set aside, feasible seats of comparable contact
-// ordered by penalty (ties keep the seat cost order), the others after them;
-// the count kept; bad settings and penalties rejected.
+// and seat depth ordered by penalty (ties keep the seat cost order), the others
+// after them; the count kept; bad settings and penalties rejected.
 #include "occlude/planner/seat_ranking.h"
 
 #include <gtest/gtest.h>
@@ -63,6 +63,42 @@ TEST(RankSeatsTest, ComparableSeatsByPenaltyThenTheRestThenInfeasible) {
   EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 2).proposals), (std::vector<int>{0, 1}));
 }
 
+// c2-ios's pattern: the seat of the reference (depth 16, 30 mm^2, penalty 5: its overjet) and
+// a seat 2.3 mm away with 60 % of its contact but 40 % of its depth (penalty 3.4: one class
+// and less overjet); a third seat with 62 % of the depth competes (the synthetic pair's
+// full-cusp Class II seat has 62 %).
+TEST(RankSeatsTest, AShallowSeatDoesNotCompeteOnThePenalty) {
+  auto seat = [](int id, double mm2, double depth) {
+    GlobalProposal s = Seat(id, mm2);
+    s.seat_depth = depth;
+    return s;
+  };
+  const std::vector<GlobalProposal> seats = {seat(0, 30.0, 16.0), seat(1, 18.0, 6.4),
+                                             seat(2, 20.0, 9.9)};
+  SeatRanking ranking;
+  ranking.judge = [](const GlobalProposal& s) {
+    const double penalty[] = {5.0, 3.4, 4.0};
+    return SeatJudgement{true, penalty[s.basin], ""};
+  };
+  EXPECT_EQ(ranking.comparable_depth, 0.55);
+  EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{2, 0, 1}));
+  ranking.comparable_depth = 0.0;  // by contact alone every seat competes
+  EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{1, 2, 0}));
+  ranking.comparable_depth = 0.7;  // only the seat of the reference is deep enough
+  EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{0, 1, 2}));
+  // Depths unknown (0 everywhere): the contact floor alone, as before the depth.
+  ranking.comparable_depth = 0.55;
+  EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals), Ids(RankSeats(
+                                                                    Seats(),
+                                                                    [&] {
+                                                                      SeatRanking r = ranking;
+                                                                      r.comparable_depth = 0.0;
+                                                                      return r;
+                                                                    }(),
+                                                                    10)
+                                                                    .proposals));
+}
+
 TEST(RankSeatsTest, HardConstraintsSetSeatsAside) {
   SeatRanking ranking;
   ranking.judge = [](const GlobalProposal& s) {
@@ -86,6 +122,16 @@ TEST(RankSeatsTest, RejectsBadSettingsAndPenalties) {
     ADD_FAILURE() << "accepted comparable_contact 1.5";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("SeatRanking.comparable_contact"), std::string::npos);
+  }
+  ranking = {};
+  for (const double bad : {-0.1, 1.1, std::numeric_limits<double>::quiet_NaN()}) {
+    ranking.comparable_depth = bad;
+    try {
+      ValidateSeatRanking(ranking);
+      ADD_FAILURE() << "accepted comparable_depth " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("SeatRanking.comparable_depth"), std::string::npos);
+    }
   }
   ranking = {};
   for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {

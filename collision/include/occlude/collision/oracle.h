@@ -137,7 +137,11 @@ struct OracleResult {
   std::vector<PartTotals> parts;                       ///< one entry per upper part
   std::vector<SurfacePoint> contacts;                  ///< contact samples (if keep_points)
   std::vector<SurfacePoint> penetrations;              ///< penetrating samples (if keep_points)
-  std::vector<DistanceResidual> residuals;             ///< if requested
+  /// The deep samples one by one (if keep_points), distance_mm = -(penetration_search_mm +
+  /// the field's band): at least that deep. Not those of upper pieces wholly inside the lower
+  /// (counted per piece), so deep_points.size() <= deep_samples.
+  std::vector<SurfacePoint> deep_points;
+  std::vector<DistanceResidual> residuals;  ///< if requested
   // Work done.
   std::size_t cells = 0;
   std::size_t samples_evaluated = 0;  ///< samples (voxel centroids at voxel level) looked up
@@ -198,7 +202,11 @@ class JawOracle {
   void Accumulate(const Eigen::Vector3d& p_L, double d, const Eigen::Vector3d& grad, double area,
                   std::int32_t part, const OracleRequest& request, OracleResult* result) const;
   /// An unknown sample (outside the field's band, or no triangle within reach).
-  void CountIfDeep(const Eigen::Vector3d& p_L, OracleResult* result) const;
+  void CountIfDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+                   const OracleRequest& request, OracleResult* result) const;
+  /// Counts one deep sample (and lists it with keep_points).
+  void AddDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
+               const OracleRequest& request, OracleResult* result) const;
   /// The lower grid classes p_L's voxel Interior (oracle_context.h).
   bool LowerInterior(const Eigen::Vector3d& p_L) const;
   // No upper cell came within reach of the lower surface: the upper lies wholly outside the

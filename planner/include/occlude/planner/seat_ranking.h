@@ -34,6 +34,11 @@ struct GlobalProposal {
   ArchShift from_given;     ///< from the request's local.X_LU_start
   int basin = 0;            ///< index into GlobalResult::basins it was refined from
   SeatJudgement judgement;  ///< the ranking's verdict (the default one without a judge)
+  /// How far the seat objective drops from the jaws apart to this seat (the seat cost with no
+  /// sample within the attraction window minus proposal.seat_cost, on the last stage's
+  /// samples): how much occlusal surface the seat closes, robustly (unlike the contact area
+  /// within the band). Larger is better; 0 when unknown.
+  double seat_depth = 0.0;
 };
 
 /// The judge: called once per distinct seat, serialized, in the order of the seats as found
@@ -43,12 +48,20 @@ using SeatJudge = std::function<SeatJudgement(const GlobalProposal& seat)>;
 struct SeatRanking {
   SeatJudge judge;  ///< empty: the seats keep their order (seat cost), all admissible
   /// Feasible admissible seats whose contact area is at least this share of the largest among
-  /// them compete on the penalty (ties by seat cost); the rest follow by seat cost, then the
-  /// infeasible ones. In [0, 1]: 0 ranks every feasible seat by penalty, 1 only the best.
+  /// them, and whose seat depth at least comparable_depth of the deepest among them, compete
+  /// on the penalty (ties by seat cost); the rest follow by seat cost, then the infeasible
+  /// ones. In [0, 1]: 0 ranks every feasible seat by penalty, 1 only the best.
   double comparable_contact = 0.5;
+  /// The same share of GlobalProposal::seat_depth (0 turns it off; seats of depth 0, unknown,
+  /// pass when the deepest is 0 too). The contact area within the band alone is a hair
+  /// trigger: on c2-ios the seat of the reference (depth 15-16.5, 14-31 mm^2) lost to seats of
+  /// depth 5.4-8.0 with 55-86 % of its contact area; the full-cusp Class II seat of the
+  /// synthetic pair has 62 % of the designed bite's depth (81 % of its contact).
+  double comparable_depth = 0.55;
 };
 
-/// Throws std::invalid_argument naming the field ("SeatRanking.comparable_contact") and the fix.
+/// Throws std::invalid_argument naming the field ("SeatRanking.comparable_contact" or
+/// "SeatRanking.comparable_depth") and the fix.
 void ValidateSeatRanking(const SeatRanking& ranking);
 
 struct RankedSeats {
