@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/tooth_landmarks.h"
+#include "surface_view.h"
 
 namespace occlude::analysis {
 namespace {
@@ -21,25 +22,8 @@ constexpr double kIncisorHalfWidthMm = 3.5;
 constexpr double kIncisorEdgeTolMm = 0.5;
 
 ToothView IncisorView(int fdi, io::Jaw jaw, const std::function<double(double, double)>& surface) {
-  ToothView view;
-  view.fdi = fdi;
-  view.jaw = jaw;
-  view.u_mesial = kIncisorHalfLengthMm;
-  view.u_distal = -kIncisorHalfLengthMm;
-  HeightMap& map = view.top;
-  map.cell = kIncisorCellMm;
-  map.corner = {-kIncisorHalfLengthMm, -kIncisorHalfWidthMm};
-  map.nx = static_cast<int>(std::lround(2.0 * kIncisorHalfLengthMm / map.cell));
-  map.ny = static_cast<int>(std::lround(2.0 * kIncisorHalfWidthMm / map.cell));
-  map.height.assign(static_cast<std::size_t>(map.nx * map.ny), 0.0);
-  map.triangle.assign(map.height.size(), -1);
-  view.top_uvw.assign(map.height.size(), Eigen::Vector3d::Zero());
-  for (int c = 0; c < map.nx * map.ny; ++c) {
-    const Eigen::Vector2d q = map.Centre(c);
-    map.height[static_cast<std::size_t>(c)] = surface(q.x(), q.y());
-    view.top_uvw[static_cast<std::size_t>(c)] << q, map.height[static_cast<std::size_t>(c)];
-  }
-  return view;
+  return test::SurfaceView(fdi, jaw, kIncisorHalfLengthMm, kIncisorHalfWidthMm, kIncisorCellMm,
+                           surface);
 }
 
 // An upper central incisor whose edge (a ridge along v = 0.5, falling 1.5 mm per mm across)

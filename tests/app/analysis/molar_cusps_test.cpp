@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/tooth_landmarks.h"
+#include "surface_view.h"
 
 namespace occlude::analysis {
 namespace {
@@ -26,26 +27,7 @@ constexpr double kMolarCuspTolMm = 0.3;  // a cusp's peak: within a cell or so o
 // The segmented view of w = surface(u, v) over the span |u| <= 5.5, |v| <= 5: each cell's height
 // the surface at its centre.
 ToothView MolarView(int fdi, io::Jaw jaw, const std::function<double(double, double)>& surface) {
-  ToothView view;
-  view.fdi = fdi;
-  view.jaw = jaw;
-  view.u_mesial = kMolarHalfLengthMm;
-  view.u_distal = -kMolarHalfLengthMm;
-  view.whole_crown = false;
-  HeightMap& map = view.top;
-  map.cell = kMolarCellMm;
-  map.corner = {-kMolarHalfLengthMm, -kMolarHalfWidthMm};
-  map.nx = static_cast<int>(std::lround(2.0 * kMolarHalfLengthMm / map.cell));
-  map.ny = static_cast<int>(std::lround(2.0 * kMolarHalfWidthMm / map.cell));
-  map.height.assign(static_cast<std::size_t>(map.nx * map.ny), 0.0);
-  map.triangle.assign(map.height.size(), -1);
-  view.top_uvw.assign(map.height.size(), Eigen::Vector3d::Zero());
-  for (int c = 0; c < map.nx * map.ny; ++c) {
-    const Eigen::Vector2d q = map.Centre(c);
-    map.height[static_cast<std::size_t>(c)] = surface(q.x(), q.y());
-    view.top_uvw[static_cast<std::size_t>(c)] << q, map.height[static_cast<std::size_t>(c)];
-  }
-  return view;
+  return test::SurfaceView(fdi, jaw, kMolarHalfLengthMm, kMolarHalfWidthMm, kMolarCellMm, surface);
 }
 
 // A rounded cusp of height h at (u0, v0), 1.2 mm wide.
