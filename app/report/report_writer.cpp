@@ -5,6 +5,7 @@
 #include <exception>
 #include <functional>
 #include <thread>
+#include <vector>
 
 #include "base/output_files.h"
 #include "base/timing.h"
@@ -51,23 +52,32 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
                                config.report.map_penetration_from_mm};
   const int w = config.report.image_width_px;
   std::string png[4];
+  // The 3D view's display meshes, when the view brings none, are decimated beside the images.
+  ReportView own_view = view;
+  DisplayJaws decimated;
   {
-    // Four independent images on two workers, the slowest first (a side view rasterizes both
-    // whole jaws, a map one jaw's occlusal side): each worker takes the next image left.
-    const std::function<std::string()> images[4] = {
-        [&] { return EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
+    // Independent tasks on two workers, the slowest first (a side view rasterizes both whole
+    // jaws, the decimation reads both, a map one jaw's occlusal side): each worker takes the
+    // next one left.
+    std::vector<std::function<void()>> tasks = {
+        [&] { png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
         [&] {
-          return EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
+          png[3] = EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
         },
-        [&] { return EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image); },
-        [&] { return EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image); }};
-    const int slot[4] = {2, 3, 0, 1};  // png[]: lower map, upper map, frontal, lateral
-    std::atomic<int> next{0};
-    std::exception_ptr failed[4];
+        [&] { png[0] = EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image); },
+        [&] {
+          png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image);
+        }};
+    if (view.display == nullptr) {
+      tasks.insert(tasks.begin() + 2, [&] { decimated = DecimateJawsForViewer(jaws); });
+      own_view.display = &decimated;
+    }
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> failed(tasks.size());
     auto worker = [&] {
-      for (int i = next++; i < 4; i = next++) {
+      for (std::size_t i = next++; i < tasks.size(); i = next++) {
         try {
-          png[slot[i]] = images[i]();
+          tasks[i]();
         } catch (...) {
           failed[i] = std::current_exception();
         }
@@ -89,7 +99,7 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   in.search_json = search_json;
   in.search_html = search_html;
   const double t_view = NowSeconds();
-  in.viewer_html = ReportViewerHtml(session, analysis, view);
+  in.viewer_html = ReportViewerHtml(session, analysis, own_view);
   analysis.timings_s.emplace_back("3D view", NowSeconds() - t_view);
   in.pictures = {{"Lower arch, occlusal contact map", png[0], "lower_map.png"},
                  {"Upper arch, occlusal contact map", png[1], "upper_map.png"},
