@@ -1,8 +1,10 @@
 // The automated occlusion proposal as files (see proposal_report.h).
 #include "report/proposal_report.h"
 
+#include <exception>
 #include <iomanip>
 #include <iostream>
+#include <thread>
 
 #include "base/output_files.h"
 #include "base/progress.h"
@@ -49,11 +51,29 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   SearchSummary summary{"propose", "the config's [start] pose", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};
   summary.analysis = &session.Analysis();
-  ReportAnalysis analysis = AnalyzePose(session, best.X_LU);
+  // The 3D view's display meshes (the meshes alone) are decimated while the best pose is
+  // analysed.
+  DisplayJaws display;
+  std::exception_ptr decimate_failed;
+  std::thread decimate([&] {
+    try {
+      display = DecimateJawsForViewer(session.jaws());
+    } catch (...) {
+      decimate_failed = std::current_exception();
+    }
+  });
+  ReportAnalysis analysis;
+  try {
+    analysis = AnalyzePose(session, best.X_LU);
+  } catch (...) {
+    decimate.join();
+    throw;
+  }
+  decimate.join();
+  if (decimate_failed) std::rethrow_exception(decimate_failed);
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;
   clock.Start("rendered the maps and views");
-  const DisplayJaws display = DecimateJawsForViewer(session.jaws());
   const ReportView view{&display, ProposalsForViewer(session, display, result, analysis)};
   const ReportFiles files = MakeReportFiles(session, analysis, "proposal 1 of `occlude propose`",
                                             SearchJson(summary, false), SearchHtml(summary), view);
