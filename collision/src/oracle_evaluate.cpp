@@ -29,9 +29,21 @@ namespace occlude::collision {
 void JawOracle::AddDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
                         const OracleRequest& request, OracleResult* result) const {
   ++result->deep_samples;
-  if (request.keep_points)
+  if (request.keep_points) {
     result->deep_points.push_back(
         {p_L, -(request.penetration_search_mm + sdf_.band_mm()), area, part});
+  }
+}
+
+void JawOracle::AddUnknownSample(std::uint32_t i, bool interior, const QueryContext& q,
+                                 OracleResult* result) const {
+  const Eigen::Vector3d p_L = q.X_LU * sample_p_U_[i].cast<double>();
+  const auto area = static_cast<double>(sample_area_[i]);
+  if (interior) {
+    AddDeep(p_L, area, sample_part_[i], q.request, result);
+  } else {
+    CountIfDeep(p_L, area, sample_part_[i], q.request, result);
+  }
 }
 
 void JawOracle::CountIfDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
@@ -114,9 +126,10 @@ void JawOracle::EvaluateCell(std::uint32_t node, QueryContext* q, OracleResult* 
       const Eigen::Array4f local = q->cell.local + m0 * o.x() + m1 * o.y() + m2 * o.z();
       double d = 0.0;
       if (!q->sampler.CellValue(q->cell.base, local, &d)) {
-        if (classify_unknown)
+        if (classify_unknown) {
           CountIfDeep(q->X_LU * voxel_centroid_U_[v].cast<double>(),
                       static_cast<double>(voxel_area_[v]), voxel_part_[v], request, result);
+        }
         continue;
       }
       result->min_distance_mm = std::min(result->min_distance_mm, d);
@@ -208,13 +221,8 @@ void JawOracle::EvaluateSubVoxel(std::uint32_t first, std::uint32_t last, QueryC
               });
           voxel_side_found = true;
         }
-        if (voxel_side == UnknownSide::kInterior) {
-          AddDeep(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]),
-                  sample_part_[i], request, result);
-        } else if (voxel_side == UnknownSide::kMaybeInterior) {
-          CountIfDeep(q->X_LU * sample_p_U_[i].cast<double>(), static_cast<double>(sample_area_[i]),
-                      sample_part_[i], request, result);
-        }
+        if (voxel_side != UnknownSide::kExterior)
+          AddUnknownSample(i, voxel_side == UnknownSide::kInterior, *q, result);
         continue;
       }
       min_d = std::min(min_d, d);

@@ -207,6 +207,10 @@ class JawOracle {
   /// Counts one deep sample (and lists it with keep_points).
   void AddDeep(const Eigen::Vector3d& p_L, double area, std::int32_t part,
                const OracleRequest& request, OracleResult* result) const;
+  /// Upper sample i, unknown to the field: deep when `interior` (its voxel's unknown samples all
+  /// lie inside the lower), else classified on its own.
+  void AddUnknownSample(std::uint32_t i, bool interior, const QueryContext& q,
+                        OracleResult* result) const;
   /// The lower grid classes p_L's voxel Interior (oracle_context.h).
   bool LowerInterior(const Eigen::Vector3d& p_L) const;
   // No upper cell came within reach of the lower surface: the upper lies wholly outside the
