@@ -1,13 +1,12 @@
 // The automated occlusion proposal as files (see proposal_report.h).
 #include "report/proposal_report.h"
 
-#include <exception>
 #include <iomanip>
 #include <iostream>
-#include <thread>
 
 #include "base/output_files.h"
 #include "base/progress.h"
+#include "base/tasks.h"
 #include "base/timing.h"
 #include "base/user_error.h"
 #include "config/case_output.h"
@@ -54,23 +53,9 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   // The 3D view's display meshes (the meshes alone) are decimated while the best pose is
   // analysed.
   DisplayJaws display;
-  std::exception_ptr decimate_failed;
-  std::thread decimate([&] {
-    try {
-      display = DecimateJawsForViewer(session.jaws());
-    } catch (...) {
-      decimate_failed = std::current_exception();
-    }
-  });
   ReportAnalysis analysis;
-  try {
-    analysis = AnalyzePose(session, best.X_LU);
-  } catch (...) {
-    decimate.join();
-    throw;
-  }
-  decimate.join();
-  if (decimate_failed) std::rethrow_exception(decimate_failed);
+  RunTasks({[&] { analysis = AnalyzePose(session, best.X_LU); },
+            [&] { display = DecimateJawsForViewer(session.jaws()); }});
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;
   clock.Start("rendered the maps and views");

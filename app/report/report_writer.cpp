@@ -1,13 +1,11 @@
 // The report of one pose as files (see report_writer.h).
 #include "report/report_writer.h"
 
-#include <atomic>
-#include <exception>
 #include <functional>
-#include <thread>
 #include <vector>
 
 #include "base/output_files.h"
+#include "base/tasks.h"
 #include "base/timing.h"
 #include "base/user_error.h"
 #include "occlude/io/mesh_io.h"
@@ -56,9 +54,8 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   ReportView own_view = view;
   DisplayJaws decimated;
   {
-    // Independent tasks on two workers, the slowest first (a side view rasterizes both whole
-    // jaws, the decimation reads both, a map one jaw's occlusal side): each worker takes the
-    // next one left.
+    // Independent tasks on two threads, the slowest first (a side view rasterizes both whole
+    // jaws, the decimation reads both, a map one jaw's occlusal side).
     std::vector<std::function<void()>> tasks = {
         [&] { png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
         [&] {
@@ -72,23 +69,7 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
       tasks.insert(tasks.begin() + 2, [&] { decimated = DecimateJawsForViewer(jaws); });
       own_view.display = &decimated;
     }
-    std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> failed(tasks.size());
-    auto worker = [&] {
-      for (std::size_t i = next++; i < tasks.size(); i = next++) {
-        try {
-          tasks[i]();
-        } catch (...) {
-          failed[i] = std::current_exception();
-        }
-      }
-    };
-    std::thread helper(worker);
-    worker();
-    helper.join();
-    for (const std::exception_ptr& e : failed) {
-      if (e) std::rethrow_exception(e);
-    }
+    RunTasks(tasks);
   }
   analysis.timings_s.emplace_back("render", NowSeconds() - t0);
   ReportInputs in;

@@ -2,10 +2,9 @@
 // landmarks applied per jaw, and ComputeRelationships at a pose.
 #include "session/case_analysis.h"
 
-#include <exception>
 #include <optional>
-#include <thread>
 
+#include "base/tasks.h"
 #include "base/user_error.h"
 #include "occlude/io/landmark_file.h"
 
@@ -13,23 +12,9 @@ namespace occlude::app {
 
 CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given) {
   CaseAnalysis a;
-  // The two jaws are analysed independently: the upper on a second thread.
-  std::exception_ptr upper_failed;
-  std::thread upper([&] {
-    try {
-      a.upper_U = analysis::AnalyzeArch(*pair.upper_U, io::Jaw::kUpper);
-    } catch (...) {
-      upper_failed = std::current_exception();
-    }
-  });
-  try {
-    a.lower_L = analysis::AnalyzeArch(*pair.lower_L, io::Jaw::kLower);
-  } catch (...) {
-    upper.join();
-    throw;
-  }
-  upper.join();
-  if (upper_failed) std::rethrow_exception(upper_failed);
+  // The two jaws are analysed independently, at once.
+  RunTasks({[&] { a.upper_U = analysis::AnalyzeArch(*pair.upper_U, io::Jaw::kUpper); },
+            [&] { a.lower_L = analysis::AnalyzeArch(*pair.lower_L, io::Jaw::kLower); }});
   analysis::ApplyGivenLandmarks(given, &a.lower_L);
   analysis::ApplyGivenLandmarks(given, &a.upper_U);
   a.has_given_landmarks = !given.empty();
