@@ -231,8 +231,6 @@ RegionSelector::~RegionSelector() = default;
 RegionSelector::RegionSelector(RegionSelector&&) noexcept = default;
 RegionSelector& RegionSelector::operator=(RegionSelector&&) noexcept = default;
 
-const RegionOfInterestRequest& RegionSelector::request() const { return impl_->request; }
-
 double RegionSelector::seconds() const { return impl_->seconds; }
 
 RegionOfInterest RegionSelector::Select(double band_mm) const {
@@ -265,7 +263,6 @@ RegionOfInterest RegionSelector::Select(double band_mm) const {
 RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::TriangleMesh>& lower_L,
                                          const std::shared_ptr<const io::TriangleMesh>& upper_U,
                                          const RegionOfInterestRequest& request) {
-  Validate(request);
   const RegionSelector selector(lower_L, upper_U, request);
   RegionOfInterest roi = selector.Select(request.band_mm);
   roi.stats.seconds += selector.seconds();

@@ -15,11 +15,6 @@
 namespace occlude::planner::detail {
 namespace {
 
-Eigen::Matrix3d Exp(const Eigen::Vector3d& w) {
-  const double a = w.norm();
-  return a > 0 ? Eigen::AngleAxisd(a, w / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
-}
-
 Eigen::Vector3d Log(const Eigen::Matrix3d& R) {
   const Eigen::AngleAxisd aa(R);
   return aa.axis() * aa.angle();

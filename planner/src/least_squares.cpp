@@ -22,6 +22,12 @@ Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
   return m;
 }
 
+Eigen::Matrix3d Exp(const Eigen::Vector3d& w) {
+  const double angle = w.norm();
+  return angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
+                   : Eigen::Matrix3d::Identity();
+}
+
 Eigen::Matrix3d LeftJacobian(const Eigen::Vector3d& w) {
   const double t = w.norm();
   const Eigen::Matrix3d W = Hat(w);
@@ -127,13 +133,8 @@ SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSe
   }
 }
 
-SurfaceResiduals::Impl::PoseAt::PoseAt(const Vector6d& z_in) : z(z_in) {
-  const Eigen::Vector3d w = z.tail<3>();
-  const double angle = w.norm();
-  R = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix()
-                : Eigen::Matrix3d::Identity();
-  Jl = detail::LeftJacobian(w);
-}
+SurfaceResiduals::Impl::PoseAt::PoseAt(const Vector6d& z_in)
+    : z(z_in), R(detail::Exp(z.tail<3>())), Jl(detail::LeftJacobian(z.tail<3>())) {}
 
 double SurfaceResiduals::Impl::Distance(std::size_t i, const PoseAt& pose, Row6d* gradient) const {
   const Eigen::Vector3d Rv = pose.R * v_L[i];

@@ -74,6 +74,8 @@ class ResidualMemo {
   std::vector<Sample> samples_;
 };
 
+/// The rotation of rotation vector w (rad): Exp(w) = exp(Hat(w)).
+Eigen::Matrix3d Exp(const Eigen::Vector3d& w);
 /// The cross-product matrix of w: Hat(w) v = w x v.
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w);
 /// Left Jacobian of SO(3) and its inverse at rotation vector w (rad).

@@ -95,8 +95,6 @@ class RegionSelector {
 
   /// The region for `band_mm` (stats.seconds: this selection's wall time).
   RegionOfInterest Select(double band_mm) const;
-  /// The request it was made for (band_mm as given to the constructor).
-  const RegionOfInterestRequest& request() const;
   /// Wall seconds of the construction.
   double seconds() const;
 
