@@ -86,17 +86,14 @@ TEST(RankSeatsTest, AShallowSeatDoesNotCompeteOnThePenalty) {
   EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{1, 2, 0}));
   ranking.comparable_depth = 0.7;  // only the seat of the reference is deep enough
   EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{0, 1, 2}));
-  // Depths unknown (0 everywhere): the contact floor alone, as before the depth.
+  // Depths unknown (0 everywhere, as in Seats()): the contact floor alone, as before the depth.
+  ranking.judge = ByTable;  // Seats() has ids 0-4; the table above covers 0-2 only
   ranking.comparable_depth = 0.55;
-  EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals), Ids(RankSeats(
-                                                                    Seats(),
-                                                                    [&] {
-                                                                      SeatRanking r = ranking;
-                                                                      r.comparable_depth = 0.0;
-                                                                      return r;
-                                                                    }(),
-                                                                    10)
-                                                                    .proposals));
+  SeatRanking by_contact_alone = ranking;
+  by_contact_alone.comparable_depth = 0.0;
+  EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals),
+            Ids(RankSeats(Seats(), by_contact_alone, 10).proposals));
+  EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals), (std::vector<int>{3, 2, 0, 1, 4}));
 }
 
 TEST(RankSeatsTest, HardConstraintsSetSeatsAside) {
