@@ -304,6 +304,50 @@ TEST(NarrowBand, CornerValuesAreExact) {
   EXPECT_GT(checked, 1500);
 }
 
+// The build's scan rejects candidates by float bounds (spheres, and discs in the triangles'
+// planes) computed relative to each brick: far from the origin (float rounding of coordinates
+// ~1e-4 mm there), with tiny triangles (a radius far below the distances), slivers and a
+// degenerate triangle (no plane), every corner is still the exact brute-force value.
+TEST(NarrowBand, CornerValuesAreExactFarFromTheOriginWithTinyAndSliverTriangles) {
+  io::TriangleMesh mesh = test::MakeSphere(V(0, 0, 0), 1.2, 40, 80);  // edges ~0.1 mm
+  io::TriangleMesh slivers;
+  slivers.vertices = {V(-0.5, 1.4, -0.2), V(0.9, 1.4, -0.2), V(0.2, 1.4 + 1e-9, -0.2),
+                      V(0.2, 1.5, 0.6),   V(0.2, 1.5, 0.6),  V(0.7, 1.9, 0.1)};
+  slivers.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(3, 4, 5),
+                       Eigen::Vector3i(0, 2, 5)};
+  slivers.triangle_part.assign(slivers.triangles.size(), 0);
+  slivers.parts.resize(1);
+  slivers.ComputeFaceNormals();
+  mesh.Append(slivers);
+  for (const V& offset : {V(0, 0, 0), V(800.0, -650.0, 720.0)}) {
+    const io::TriangleMesh moved =
+        mesh.Transformed(Eigen::Isometry3d(Eigen::Translation3d(offset)));
+    const PseudoNormals normals(moved);
+    for (const double s : {0.1, 0.4}) {
+      const VoxelGrid grid = Grid(moved, s);
+      const NarrowBandSdf sdf =
+          NarrowBandSdf::Build(std::make_shared<const io::TriangleMesh>(moved), grid, {});
+      NearSurfaceSampler sampler(moved, 5);
+      int checked = 0;
+      for (int i = 0; i < 1500; ++i) {
+        const V q = (sampler.Next(sdf.band_mm()) - grid.origin_F) / s;
+        const V corner =
+            grid.origin_F + s * V(std::round(q.x()), std::round(q.y()), std::round(q.z()));
+        double d = 0.0;
+        if (!sdf.Interpolate(corner, &d)) continue;
+        SignedDistanceSample brute;
+        ASSERT_TRUE(SignedDistanceBruteForce(moved, normals, corner, &brute));
+        // Float storage of values up to ~2 mm, at coordinates up to ~1300 mm (the corner's
+        // own position is rounded to double, the value to float).
+        EXPECT_NEAR(d, brute.distance, 2e-6)
+            << "offset " << offset.transpose() << " s " << s << " corner " << corner.transpose();
+        ++checked;
+      }
+      EXPECT_GT(checked, 1000) << "offset " << offset.transpose() << " s " << s;
+    }
+  }
+}
+
 TEST(NarrowBand, BandCellsWithinHoldEveryPointWhoseValueLiesInTheRange) {
   // Against the field itself, for whole voxels (BandVoxelsWithin, split 1) and
   // for voxels split 2 and 3 ways: every point whose interpolated value lies

@@ -298,16 +298,14 @@ class NarrowBandSdf {
   /// (into value[rank]), from one candidate list of triangles for the brick.
   void BrickCornerValues(const detail::BrickSet& corners, std::size_t bi, CornerScratch* scratch,
                          std::vector<float>* value) const;
-  void ScanCandidates(const CornerScratch& scratch, std::size_t count, const Eigen::Vector3d& p,
-                      Nearest* best, bool* found) const;
-  /// The triangles of the surface voxels whose cubes lie within R (mm) of the box [box_lo,
-  /// box_hi] (voxel coordinates), each once, as the scratch's candidates (in voxel order).
+  void ScanCandidates(const CornerScratch& scratch, const Eigen::Vector3d& p, Nearest* best,
+                      bool* found) const;
+  /// Appends the triangles of the surface voxels whose cubes lie within R (mm) of the box
+  /// [box_lo, box_hi] (voxel coordinates), each once, to the scratch's candidates (in voxel
+  /// order).
   void GatherCandidates(const Eigen::Vector3d& box_lo, const Eigen::Vector3d& box_hi, double R,
                         CornerScratch* scratch) const;
   void AddVoxelCandidates(std::size_t voxel, CornerScratch* scratch) const;
-  static void ClearCandidates(CornerScratch* scratch);
-  /// Pads the candidates to a multiple of four with ones never within reach (ScanCandidates).
-  static void PadCandidates(CornerScratch* scratch);
   void FillBlocks(const detail::BrickSet& band, int threads);
   /// Closest triangle to p among those within sqrt(bound2); `hint` (a triangle
   /// index or kNoHint) seeds the search. False when none is within.
