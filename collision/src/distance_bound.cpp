@@ -5,7 +5,9 @@
 #include "occlude/collision/distance_bound.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -56,30 +58,39 @@ struct BrickMap {
 
 // Index of cell (along, rest) of a brick, `along` the coordinate on `axis` and `rest` = u + 8 w
 // for the other two in increasing axis order: the layout a pass reads rows of.
-int PassCell(int axis, int along, int rest) {
+constexpr int PassCell(int axis, int along, int rest) {
   const int u = rest & 7, w = rest >> 3;
-  if (axis == 0) return CellIndex(along, u, w);
-  if (axis == 1) return CellIndex(u, along, w);
-  return CellIndex(u, w, along);
+  constexpr int kY = kBrickBits, kZ = 2 * kBrickBits;  // as detail::BoundCellIndex
+  if (axis == 0) return along | u << kY | w << kZ;
+  if (axis == 1) return u | along << kY | w << kZ;
+  return u | w << kY | along << kZ;
 }
+// PassCell(axis, i >> 6, i & 63) for every row index i = 64 along + rest, per axis.
+constexpr std::array<std::array<std::uint16_t, 512>, 3> kPassCells = [] {
+  std::array<std::array<std::uint16_t, 512>, 3> t{};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < 512; ++i) {
+      t[static_cast<std::size_t>(axis)][static_cast<std::size_t>(i)] =
+          static_cast<std::uint16_t>(PassCell(axis, i >> 6, i & 63));
+    }
+  }
+  return t;
+}();
 
 // Three bricks along `axis` (below, the brick, above; null = all at the cap) as 24 rows of 64
 // cells, row = the coordinate along the axis + 8.
 void GatherRows(const std::array<const Brick*, 3>& bricks, int axis, std::uint8_t cap,
                 std::uint8_t* rows) {
+  const auto& cell = kPassCells[static_cast<std::size_t>(axis)];
   for (int k = 0; k < 3; ++k) {
     std::uint8_t* out = rows + 512 * k;
-    if (bricks[static_cast<std::size_t>(k)] == nullptr) {
+    const Brick* b = bricks[static_cast<std::size_t>(k)];
+    if (b == nullptr) {
       std::fill(out, out + 512, cap);
     } else if (axis == 2) {
-      std::copy(bricks[static_cast<std::size_t>(k)]->begin(),
-                bricks[static_cast<std::size_t>(k)]->end(), out);
+      std::copy(b->begin(), b->end(), out);
     } else {
-      const Brick& b = *bricks[static_cast<std::size_t>(k)];
-      for (int along = 0; along < kBrickEdge; ++along) {
-        for (int rest = 0; rest < 64; ++rest)
-          out[64 * along + rest] = b[static_cast<std::size_t>(PassCell(axis, along, rest))];
-      }
+      for (std::size_t i = 0; i < 512; ++i) out[i] = (*b)[cell[i]];
     }
   }
 }
@@ -116,15 +127,13 @@ bool PassBrick(const std::array<const Brick*, 3>& src, int axis, const std::vect
              out.data() + 64 * along);
     }
   }
-  bool useful = false;
-  for (int along = 0; along < kBrickEdge; ++along) {
-    for (int rest = 0; rest < 64; ++rest) {
-      const std::uint8_t v = out[static_cast<std::size_t>(64 * along + rest)];
-      useful = useful || v < cap;
-      (*dst)[static_cast<std::size_t>(PassCell(axis, along, rest))] = v;
-    }
+  const auto& cell = kPassCells[static_cast<std::size_t>(axis)];
+  std::uint8_t lowest = cap;
+  for (std::size_t i = 0; i < 512; ++i) {
+    lowest = std::min(lowest, out[i]);
+    (*dst)[cell[i]] = out[i];
   }
-  return useful;
+  return lowest < cap;
 }
 
 // The bricks a pass along `axis` may fill: every source brick and its two neighbours along
@@ -199,8 +208,12 @@ BrickMap OccupiedCells(const VoxelGrid& grid, int level, std::uint8_t cap) {
   const int m = kBrickEdge - 1;
   Eigen::Vector3i last_brick(-1, -1, -1);
   std::uint32_t last = 0;
+  std::uint64_t last_cell = ~std::uint64_t{0};
   for (const std::uint64_t key : grid.surface_keys) {
-    const Eigen::Vector3i v(MortonDecode(key >> (3 * level)));  // the level's cell
+    const std::uint64_t cell = key >> (3 * level);  // the level's cell
+    if (cell == last_cell) continue;                // sorted keys: its cell is already set
+    last_cell = cell;
+    const Eigen::Vector3i v(MortonDecode(cell));
     const Eigen::Vector3i b(v.x() >> kBrickBits, v.y() >> kBrickBits, v.z() >> kBrickBits);
     if (b != last_brick || occupied.bricks.empty()) {
       last = occupied.At(b);
