@@ -169,8 +169,9 @@ std::vector<int> CrownPeaks(const ToothView& view) {
   const double margin = kCutCells * view.top.cell;
   std::vector<int> peaks;
   for (const int c : HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm)) {
-    const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
-    const bool at_cut = view.u_mesial - u < margin || u - view.u_distal < margin;
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    const bool at_cut =
+        EndU(view, x.y(), true) - x.x() < margin || x.x() - EndU(view, x.y(), false) < margin;
     if (view.whole_crown || !at_cut) peaks.push_back(c);
   }
   return peaks;
@@ -337,7 +338,6 @@ void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<Arc
 void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   for (const bool mesial : {true, false}) {
     const double sign = mesial ? 1.0 : -1.0;
-    const double end = mesial ? view.u_mesial : view.u_distal;
     const LandmarkType type = mesial ? LandmarkType::kMesial : LandmarkType::kDistal;
     const double across = kContactAcrossShare * box.width;
     if (view.whole_crown) {
@@ -358,7 +358,9 @@ void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLan
     for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
       if (!view.top.Filled(c)) continue;
       const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
-      if (sign * (end - x.x()) > kContactBandMm || std::abs(x.y() - box.v_mid) > across) continue;
+      if (sign * (EndU(view, x.y(), mesial) - x.x()) > kContactBandMm ||
+          std::abs(x.y() - box.v_mid) > across)
+        continue;
       if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
                           view.top.height[static_cast<std::size_t>(best)])
         best = c;

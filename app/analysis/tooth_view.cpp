@@ -40,6 +40,10 @@ Eigen::Vector3d Uvw(const ArchCurve::Projection& st, double h, double s_mid, dou
   return {sign * (st.s - s_mid), st.t, h};
 }
 
+bool Between(const ToothView& view, const ArchCurve::Projection& st) {
+  return st.s >= view.right_cut.At(st.t) && st.s <= view.left_cut.At(st.t);
+}
+
 // Fills top_uvw from the cells' projections and the u range of the crown from its cells.
 void FillTop(const ArchGeometry& g, ToothView* view) {
   view->top_uvw.assign(view->top.height.size(), Eigen::Vector3d::Zero());
@@ -61,26 +65,35 @@ void FillTop(const ArchGeometry& g, ToothView* view) {
 
 double MesialSign(int fdi) { return (fdi / 10 == 1 || fdi / 10 == 4) ? 1.0 : -1.0; }
 
+double EndU(const ToothView& view, double v, bool mesial) {
+  if (view.right_cut.s.empty()) return mesial ? view.u_mesial : view.u_distal;
+  // Mesial is towards increasing arc length (the left cut) on the patient's right.
+  const ToothCut& cut = (mesial == (view.mesial_sign > 0.0)) ? view.left_cut : view.right_cut;
+  return view.mesial_sign * (cut.At(v) - view.s_mid);
+}
+
 Eigen::Vector3d ToothCoordinates(const ArchGeometry& g, double s_mid, double mesial_sign,
                                  const Eigen::Vector3d& p_J) {
   return Uvw(g.curve.Project(g.axes.Plane(p_J)), g.axes.Height(p_J), s_mid, mesial_sign);
 }
 
 ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi,
-                             io::Jaw jaw, double s_lo, double s_hi, double half_width_mm,
-                             double depth_mm) {
+                             io::Jaw jaw, const ToothCut& right, const ToothCut& left,
+                             double half_width_mm, double depth_mm) {
   ToothView view;
   view.fdi = fdi;
   view.jaw = jaw;
-  view.s_mid = 0.5 * (s_lo + s_hi);
+  view.right_cut = right;
+  view.left_cut = left;
+  view.s_mid = 0.5 * (right.At(0.0) + left.At(0.0));
   view.mesial_sign = MesialSign(fdi);
-  view.u_mesial = 0.5 * (s_hi - s_lo);
+  view.u_mesial = 0.5 * (left.At(0.0) - right.At(0.0));
   view.u_distal = -view.u_mesial;
   std::vector<int> cells;
   double top = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < g.top.nx * g.top.ny; ++c) {
     const ArchCurve::Projection& st = g.cell_st[static_cast<std::size_t>(c)];
-    if (!g.top.Filled(c) || st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm) continue;
+    if (!g.top.Filled(c) || !Between(view, st) || std::abs(st.t) > half_width_mm) continue;
     cells.push_back(c);
     top = std::max(top, g.top.height[static_cast<std::size_t>(c)]);
   }
@@ -89,8 +102,7 @@ ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const ArchCurve::Projection& st = g.vertex_st[v];
     const double h = g.axes.Height(mesh.vertices[v]);
-    if (st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm || h < top - depth_mm)
-      continue;
+    if (!Between(view, st) || std::abs(st.t) > half_width_mm || h < top - depth_mm) continue;
     view.surface_J.push_back(mesh.vertices[v]);
     view.surface_uvw.push_back(Uvw(st, h, view.s_mid, view.mesial_sign));
   }
