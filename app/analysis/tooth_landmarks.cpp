@@ -39,7 +39,8 @@ constexpr double kCanineOutlineTolMm = 0.2;
 constexpr double kCanineSliceMm = 0.4;
 constexpr double kCanineRidgeMm = 0.15;
 constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
-constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
+constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways ...
+constexpr double kFossaFloorMm = 0.3;         // ... the middle of its cells this near its lowest
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
 constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
@@ -314,23 +315,33 @@ void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<Arch
                       "middle of the highest cells of the incisal edge's middle slice"));
 }
 
-// The central fossa: the lowest cell of the crown's middle.
+// The central fossa: the middle of the lowest cells of the crown's middle (within kFossaFloorMm
+// of the lowest: a worn or flat floor has no single lowest point).
 void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   int best = -1;
-  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
-    if (!view.top.Filled(c)) continue;
+  const auto in_middle = [&](int c) {
     const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
-    if (std::abs(x.x() - box.u_mid) > kFossaShare * box.length ||
-        std::abs(x.y() - box.v_mid) > kFossaShare * box.width)
-      continue;
+    return view.top.Filled(c) && std::abs(x.x() - box.u_mid) <= kFossaShare * box.length &&
+           std::abs(x.y() - box.v_mid) <= kFossaShare * box.width;
+  };
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!in_middle(c)) continue;
     if (best < 0 || view.top.height[static_cast<std::size_t>(c)] <
                         view.top.height[static_cast<std::size_t>(best)])
       best = c;
   }
-  if (best >= 0) {
-    out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(best), 0.6,
-                        "lowest point of the occlusal surface's middle"));
+  if (best < 0) return;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (in_middle(c) && view.top.height[static_cast<std::size_t>(c)] <=
+                            view.top.height[static_cast<std::size_t>(best)] + kFossaFloorMm)
+      sum += view.top.Centre(c), ++n;
   }
+  const int at = view.top.CellAt(sum / n);
+  const int cell = at >= 0 && view.top.Filled(at) ? at : best;
+  out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(cell), 0.6,
+                      "middle of the lowest points of the occlusal surface's middle"));
 }
 
 // Contact points: a whole crown's most mesial / distal surface point near its top; on a scan,
