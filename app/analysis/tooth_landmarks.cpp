@@ -46,11 +46,9 @@ constexpr double kContactDepthMm = 5.0;       // ... and at most this below its 
 constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
 constexpr double kContactSearchMm = 2.5;      // whole crowns: the closest pair this near ends
 constexpr double kContactTieMm = 0.05;        // ... or the highest of pairs this much farther
-constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
 constexpr double kClinicalCrownShare = 0.8;
 constexpr double kCrownBandMm = 3.0;  // a crown's extent across: its cells this close to its top //
                                       // the gingiva covers the rest of the crown
-constexpr double kFacialHeightTolMm = 0.5;
 
 // Wheeler's anatomical crown heights (cervical line to cusp tip / incisal edge), positions 1-8.
 constexpr double kUpperCrownMm[8] = {10.5, 9.0, 10.0, 8.5, 7.5, 7.5, 7.0, 6.5};
@@ -383,26 +381,61 @@ void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLan
   }
 }
 
-// Facial / lingual: the outermost surface point of the middle slice on each side at half the
-// clinical crown's height below the top.
+// The outermost point (sign +1: largest v, -1: smallest) on the `sign` side of v_mid where the
+// line u = u0, w = w0 across the arch meets the view's surface triangles (in tooth coordinates,
+// the point itself interpolated in J); false when it meets none there.
+bool OutermostOnLine(const ToothView& view, double u0, double w0, double sign, double v_mid,
+                     Eigen::Vector3d* p_J) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const auto& tri : view.surface_triangles) {
+    const Eigen::Vector3d& a = view.surface_uvw[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector3d& b = view.surface_uvw[static_cast<std::size_t>(tri[1])];
+    const Eigen::Vector3d& c = view.surface_uvw[static_cast<std::size_t>(tri[2])];
+    // Barycentric coordinates of (u0, w0) in the triangle projected on the (u, w) plane.
+    const double det = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+    if (std::abs(det) < 1e-12) continue;
+    const double l1 = ((u0 - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (w0 - a.z())) / det;
+    const double l2 = ((b.x() - a.x()) * (w0 - a.z()) - (u0 - a.x()) * (b.z() - a.z())) / det;
+    const double l0 = 1.0 - l1 - l2;
+    if (l0 < 0.0 || l1 < 0.0 || l2 < 0.0) continue;
+    const double v = l0 * a.y() + l1 * b.y() + l2 * c.y();
+    if (sign * (v - v_mid) <= 0.0 || sign * v <= best) continue;
+    best = sign * v;
+    *p_J = l0 * view.surface_J[static_cast<std::size_t>(tri[0])] +
+           l1 * view.surface_J[static_cast<std::size_t>(tri[1])] +
+           l2 * view.surface_J[static_cast<std::size_t>(tri[2])];
+  }
+  return std::isfinite(best);
+}
+
+// The highest cell of the crown on the `sign` side of its middle across (+1 facial, -1
+// lingual); the crown's top when that side has none.
+double SideTop(const ToothView& view, const CrownBox& box, double sign) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (view.top.Filled(c) && sign * (x.y() - box.v_mid) > 0.0) top = std::max(top, x.z());
+  }
+  return std::isfinite(top) ? top : box.top;
+}
+
+// Facial / lingual: the outermost surface point on each side, half the clinical crown's height
+// below that side's top (its own cusps or edge: molars tilt buccally in the upper jaw and
+// lingually in the lower, so one side's cusps stand 1-2 mm above the other's), in the crown's
+// middle along the arch there (between its cuts at that side's outline: a rotated crown's
+// middle moves along the arch from its lingual to its facial side).
 void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
-  const double target = box.top - 0.5 * kClinicalCrownShare *
-                                      TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
+  const double depth =
+      0.5 * kClinicalCrownShare * TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
   for (const bool facial : {true, false}) {
     const double sign = facial ? 1.0 : -1.0;
-    int best = -1;
-    for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
-      const Eigen::Vector3d& x = view.surface_uvw[i];
-      if (std::abs(x.x() - box.u_mid) > kSliceMm || std::abs(x.z() - target) > kFacialHeightTolMm ||
-          sign * (x.y() - box.v_mid) <= 0.0)
-        continue;
-      if (best < 0 || sign * x.y() > sign * view.surface_uvw[static_cast<std::size_t>(best)].y())
-        best = static_cast<int>(i);
-    }
-    if (best >= 0) {
-      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual,
-                          view.surface_J[static_cast<std::size_t>(best)], 0.5,
-                          "outer surface of the middle slice, half the clinical crown down"));
+    const double target = SideTop(view, box, sign) - depth;
+    const double v_side = box.v_mid + sign * 0.5 * box.width;
+    const double u0 = 0.5 * (EndU(view, v_side, true) + EndU(view, v_side, false));
+    Eigen::Vector3d p_J = Eigen::Vector3d::Zero();
+    if (OutermostOnLine(view, u0, target, sign, box.v_mid, &p_J)) {
+      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual, p_J, 0.5,
+                          "outer surface of the crown's middle, half the clinical crown down"));
     }
   }
 }

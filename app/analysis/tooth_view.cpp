@@ -61,6 +61,23 @@ void FillTop(const ArchGeometry& g, ToothView* view) {
   }
 }
 
+// The triangles `triangles` of `mesh` (all when empty) whose three vertices the view holds
+// (`index`: per mesh vertex its index in the view, -1 when not in it).
+void AddTriangles(const io::TriangleMesh& mesh, const std::vector<std::int32_t>& triangles,
+                  const std::vector<std::int32_t>& index, ToothView* view) {
+  const std::size_t n = triangles.empty() ? mesh.num_triangles() : triangles.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto t = triangles.empty() ? k : static_cast<std::size_t>(triangles[k]);
+    std::array<std::int32_t, 3> tri{};
+    bool inside = true;
+    for (int c = 0; c < 3; ++c) {
+      tri[static_cast<std::size_t>(c)] = index[static_cast<std::size_t>(mesh.triangles[t][c])];
+      inside = inside && tri[static_cast<std::size_t>(c)] >= 0;
+    }
+    if (inside) view->surface_triangles.push_back(tri);
+  }
+}
+
 }  // namespace
 
 double MesialSign(int fdi) { return (fdi / 10 == 1 || fdi / 10 == 4) ? 1.0 : -1.0; }
@@ -99,13 +116,16 @@ ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g
   }
   view.top = Crop(g.top, cells);
   FillTop(g, &view);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const ArchCurve::Projection& st = g.vertex_st[v];
     const double h = g.axes.Height(mesh.vertices[v]);
     if (!Between(view, st) || std::abs(st.t) > half_width_mm || h < top - depth_mm) continue;
+    index[v] = static_cast<std::int32_t>(view.surface_J.size());
     view.surface_J.push_back(mesh.vertices[v]);
     view.surface_uvw.push_back(Uvw(st, h, view.s_mid, view.mesial_sign));
   }
+  AddTriangles(mesh, {}, index, &view);
   return view;
 }
 
@@ -123,17 +143,18 @@ ToothView ShellToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, in
   }
   view.s_mid = 0.5 * (Quantile(s, 0.01) + Quantile(s, 0.99));
   FillTop(g, &view);
-  std::vector<char> used(mesh.num_vertices(), 0);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
   for (const std::int32_t t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const auto v = static_cast<std::size_t>(mesh.triangles[static_cast<std::size_t>(t)][k]);
-      if (used[v]) continue;
-      used[v] = 1;
+      if (index[v] >= 0) continue;
+      index[v] = static_cast<std::int32_t>(view.surface_J.size());
       view.surface_J.push_back(mesh.vertices[v]);
       view.surface_uvw.push_back(
           Uvw(g.vertex_st[v], g.axes.Height(mesh.vertices[v]), view.s_mid, view.mesial_sign));
     }
   }
+  AddTriangles(mesh, triangles, index, &view);
   return view;
 }
 

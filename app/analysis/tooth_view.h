@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct ToothView {
   std::vector<Eigen::Vector3d> top_uvw;    ///< per cell of `top` (filled ones meaningful)
   std::vector<Eigen::Vector3d> surface_J;  ///< the tooth's vertices (crown part of a scan)
   std::vector<Eigen::Vector3d> surface_uvw;
+  /// The mesh's triangles with all three vertices in the view (indices into surface_J).
+  std::vector<std::array<std::int32_t, 3>> surface_triangles;
   double u_mesial = 0.0, u_distal = 0.0;  ///< u of its boundaries (u_mesial > 0 > u_distal)
   bool whole_crown = false;  ///< a separate shell or part: its proximal surfaces are real
 
