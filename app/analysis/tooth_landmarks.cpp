@@ -3,6 +3,7 @@
 // side of v against the crown's middle across the arch.
 #include "tooth_landmarks.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +22,8 @@ constexpr double kCuspProminenceMm = 0.05;
 constexpr double kPlateauMm = 0.05;       // a cusp's plateau: cells this close to its peak's height
 constexpr double kFallbackSliceMm = 0.4;  // a cusp region without a peak: its middle slice
 constexpr double kCutCells = 2.0;  // a peak this close to a segmented view's cut: the cut slope
+constexpr double kTableMm = 2.5;   // the occlusal table: the crown's cells this close to its top
+constexpr double kMaxTableSlope = 0.35;     // its plane inclined at most this (19 deg)
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
@@ -226,6 +229,38 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
     const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
     out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
                         "highest local maximum of the occlusal surface in the cusp's region"));
+  }
+}
+
+// Cusps found on the crown's heights above the plane fitted through its occlusal table (its
+// cells within kTableMm of its top), its slope limited to kMaxTableSlope: a crown inclined by the
+// curves of Wilson and Spee (upper molars' buccal cusps 1-2 mm above their palatal ones) has its
+// cusp tips on a slope of the occlusal view, where the view's local maxima lie off them or are
+// missing. The points keep their heights.
+void AddTiltedCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const HeightMap& map = view.top;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (!map.Filled(c) || map.height[static_cast<std::size_t>(c)] < box.top - kTableMm) continue;
+    const Eigen::Vector3d a(1.0, map.Centre(c).x(), map.Centre(c).y());
+    normal += a * a.transpose();
+    rhs += a * map.height[static_cast<std::size_t>(c)];
+  }
+  Eigen::Vector3d k = normal.ldlt().solve(rhs);
+  if (!k.allFinite()) return AddCusps(view, box, out);
+  const double slope = k.tail<2>().norm();
+  if (slope > kMaxTableSlope) k.tail<2>() *= kMaxTableSlope / slope;
+  const auto trend = [&](const Eigen::Vector2d& q) { return k(1) * q.x() + k(2) * q.y(); };
+  ToothView level = view;
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (map.Filled(c)) level.top.height[static_cast<std::size_t>(c)] -= trend(map.Centre(c));
+  }
+  const std::size_t first = out->size();
+  AddCusps(level, box, out);
+  for (std::size_t i = first; i < out->size(); ++i) {
+    Eigen::Vector3d& p = (*out)[i].landmark.p;
+    p += trend(map.axes.Plane(p)) * map.axes.up_J;
   }
 }
 
@@ -517,7 +552,7 @@ std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double too
   } else if (position == 3) {
     AddCanineTip(view, box, &out);
   } else {
-    AddCusps(view, box, &out);
+    AddTiltedCusps(view, box, &out);
   }
   if (position >= 4) AddCentralFossa(view, box, &out);
   AddContacts(view, box, &out);
