@@ -39,8 +39,9 @@ ToothCut StraightCut(double s) {
 ToothCut FindToothCut(const ArchGeometry& g, double s_mm, double reach_mm) {
   const double step = g.top.cell;
   const int rows = static_cast<int>(std::lround(2.0 * kCutHalfSpanMm / step)) + 1;
-  const int cols = 2 * static_cast<int>(std::lround(std::max(reach_mm, 0.0) / step)) + 1;
-  const double s0 = s_mm - step * (cols / 2), t0 = -kCutHalfSpanMm;
+  const int half = static_cast<int>(std::lround(std::max(reach_mm, 0.0) / step));
+  const int cols = 2 * half + 1;  // the boundary is the middle column
+  const double s0 = s_mm - step * half, t0 = -kCutHalfSpanMm;
   std::vector<double> h(static_cast<std::size_t>(rows * cols));
   double top = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < rows; ++i) {
@@ -57,7 +58,7 @@ ToothCut FindToothCut(const ArchGeometry& g, double s_mm, double reach_mm) {
     for (int j = 0; j < cols; ++j) {
       double& v = h[static_cast<std::size_t>(i * cols + j)];
       v = (std::isnan(v) ? 0.0 : std::max(v, floor) - floor) +
-          kOffsetCostPerMm * step * std::abs(j - cols / 2);
+          kOffsetCostPerMm * step * std::abs(j - half);
     }
   }
   // f[i][j]: the least cost of a path from row 0 to sample (i, j); from[i][j] its column in i-1.
