@@ -65,6 +65,18 @@ std::string Class(const std::optional<double>& v) {
   return analysis::ToString(*analysis::Classify(m).occlusion_class);
 }
 
+// Issue 19's targets for a relationship from detected landmarks against the given ones.
+constexpr double kIncisorTargetMm = 0.5;  // overjet, overbite, midline
+constexpr double kSideTargetMm = 1.0;     // molar and canine, and the same class
+
+// Whether measure i (kMeasureNames) detected `diff` mm off the given value meets its target.
+bool WithinTarget(int i, const std::optional<double>& diff, const std::string& class_given,
+                  const std::string& class_detected) {
+  if (!diff) return false;
+  if (i < 3) return std::abs(*diff) <= kIncisorTargetMm;
+  return std::abs(*diff) <= kSideTargetMm && class_given == class_detected;
+}
+
 std::string Num(const std::optional<double>& v) {
   if (!v) return "missing";
   char b[32];
@@ -151,6 +163,7 @@ void PrintRelationships(const std::map<std::string, CaseResult>& cases, std::ofs
       "\n| case | measure | clinical.md | given | detected | detected - given | class "
       "given / detected |\n|---|---|---|---|---|---|---|\n");
   double worst_given = 0.0;
+  int within = 0, rows = 0;
   for (const auto& [name, r] : cases) {
     const std::vector<double>& table = kClinicalTable.at(name);
     for (int i = 0; i < 7; ++i) {
@@ -160,6 +173,8 @@ void PrintRelationships(const std::map<std::string, CaseResult>& cases, std::ofs
       std::optional<double> diff;
       if (g && d) diff = *d - *g;
       const std::string cls = i >= 3 ? Class(g) + " / " + Class(d) : "";
+      ++rows;
+      within += WithinTarget(i, diff, Class(g), Class(d));
       std::printf("| %s | %s | %.2f | %s | %s | %s | %s |\n", name.c_str(), kMeasureNames[i],
                   table[static_cast<std::size_t>(i)], Num(g).c_str(), Num(d).c_str(),
                   Num(diff).c_str(), cls.c_str());
@@ -169,6 +184,10 @@ void PrintRelationships(const std::map<std::string, CaseResult>& cases, std::ofs
       }
     }
   }
+  std::printf(
+      "\nrows within target (overjet, overbite, midline within %.1f mm; molar and canine within "
+      "%.1f mm and the same class): %d of %d\n",
+      kIncisorTargetMm, kSideTargetMm, within, rows);
   std::printf(
       "\ngiven landmarks against clinical.md's table: largest difference %.4f mm (%s "
       "0.05 mm)\n",
@@ -265,14 +284,17 @@ void Synthetic(const fs::path* out) {
   std::printf(
       "\n| synthetic | designed | from its landmarks | detected | detected - designed | class "
       "designed / detected |\n|---|---|---|---|---|---|\n");
+  int within = 0;
   for (std::size_t i = 0; i < 7; ++i) {
     std::optional<double> diff;
     if (detected[i]) diff = *detected[i] - designed[i];
     const std::string cls = i >= 3 ? Class(designed[i]) + " / " + Class(detected[i]) : "";
+    within += WithinTarget(static_cast<int>(i), diff, Class(designed[i]), Class(detected[i]));
     std::printf("| %s | %.2f | %s | %s | %s | %s |\n", kMeasureNames[i], designed[i],
                 Num(from_given[i]).c_str(), Num(detected[i]).c_str(), Num(diff).c_str(),
                 cls.c_str());
   }
+  std::printf("\nsynthetic rows within target: %d of 7\n", within);
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ void CheckOptions(const ArchAnalysisOptions& o) {
 ToothView ViewOf(const io::TriangleMesh& mesh, const ArchGeometry& g, const ToothRegion& r,
                  io::Jaw jaw) {
   if (r.source == ToothSource::kSegmented) {
-    return SegmentedToothView(mesh, g, r.fdi, jaw, r.s_lo, r.s_hi, kToothHalfWidthMm,
+    return SegmentedToothView(mesh, g, r.fdi, jaw, r.right_cut, r.left_cut, kToothHalfWidthMm,
                               kToothDepthMm);
   }
   return ShellToothView(mesh, g, r.fdi, jaw, r.triangles);

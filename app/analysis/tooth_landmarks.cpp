@@ -3,6 +3,7 @@
 // side of v against the crown's middle across the arch.
 #include "tooth_landmarks.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +22,8 @@ constexpr double kCuspProminenceMm = 0.05;
 constexpr double kPlateauMm = 0.05;       // a cusp's plateau: cells this close to its peak's height
 constexpr double kFallbackSliceMm = 0.4;  // a cusp region without a peak: its middle slice
 constexpr double kCutCells = 2.0;  // a peak this close to a segmented view's cut: the cut slope
+constexpr double kTableMm = 2.5;   // the occlusal table: the crown's cells this close to its top
+constexpr double kMaxTableSlope = 0.35;     // its plane inclined at most this (19 deg)
 constexpr double kIncisalSliceShare = 0.1;  // incisal edge: middle tenth of the crown's length
 constexpr double kIncisalRidgeMm = 0.15;    // ... its cells this close to the slice's top
 // A canine's tip lies mesial of its crown's middle (its mesial cusp ridge is the shorter one,
@@ -39,17 +42,16 @@ constexpr double kCanineOutlineTolMm = 0.2;
 constexpr double kCanineSliceMm = 0.4;
 constexpr double kCanineRidgeMm = 0.15;
 constexpr double kCanineEdgeCells = 2.0;      // a region top this close to its end: less sure
-constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways
+constexpr double kFossaShare = 0.2;           // central fossa: middle fifth both ways ...
+constexpr double kFossaFloorMm = 0.3;         // ... the middle of its cells this near its lowest
 constexpr double kContactBandMm = 0.5;        // contact points: this close to the crown's end
 constexpr double kContactDepthMm = 5.0;       // ... and at most this below its top
 constexpr double kContactAcrossShare = 0.35;  // ... and this close to its middle across
 constexpr double kContactSearchMm = 2.5;      // whole crowns: the closest pair this near ends
 constexpr double kContactTieMm = 0.05;        // ... or the highest of pairs this much farther
-constexpr double kSliceMm = 0.6;              // facial / lingual: middle slice half-width
 constexpr double kClinicalCrownShare = 0.8;
 constexpr double kCrownBandMm = 3.0;  // a crown's extent across: its cells this close to its top //
                                       // the gingiva covers the rest of the crown
-constexpr double kFacialHeightTolMm = 0.5;
 
 // Wheeler's anatomical crown heights (cervical line to cusp tip / incisal edge), positions 1-8.
 constexpr double kUpperCrownMm[8] = {10.5, 9.0, 10.0, 8.5, 7.5, 7.5, 7.0, 6.5};
@@ -169,8 +171,9 @@ std::vector<int> CrownPeaks(const ToothView& view) {
   const double margin = kCutCells * view.top.cell;
   std::vector<int> peaks;
   for (const int c : HeightPeaks(view.top, kCuspRadiusMm, kCuspProminenceMm)) {
-    const double u = view.top_uvw[static_cast<std::size_t>(c)].x();
-    const bool at_cut = view.u_mesial - u < margin || u - view.u_distal < margin;
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    const bool at_cut =
+        EndU(view, x.y(), true) - x.x() < margin || x.x() - EndU(view, x.y(), false) < margin;
     if (view.whole_crown || !at_cut) peaks.push_back(c);
   }
   return peaks;
@@ -226,6 +229,38 @@ void AddCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandma
     const bool is_top = view.top.height[static_cast<std::size_t>(best)] >= region_top - 1e-9;
     out->push_back(Make(view, slot.type, PlateauCentre(view.top, best), is_top ? 0.9 : 0.6,
                         "highest local maximum of the occlusal surface in the cusp's region"));
+  }
+}
+
+// Cusps found on the crown's heights above the plane fitted through its occlusal table (its
+// cells within kTableMm of its top), its slope limited to kMaxTableSlope: a crown inclined by the
+// curves of Wilson and Spee (upper molars' buccal cusps 1-2 mm above their palatal ones) has its
+// cusp tips on a slope of the occlusal view, where the view's local maxima lie off them or are
+// missing. The points keep their heights.
+void AddTiltedCusps(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
+  const HeightMap& map = view.top;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (!map.Filled(c) || map.height[static_cast<std::size_t>(c)] < box.top - kTableMm) continue;
+    const Eigen::Vector3d a(1.0, map.Centre(c).x(), map.Centre(c).y());
+    normal += a * a.transpose();
+    rhs += a * map.height[static_cast<std::size_t>(c)];
+  }
+  Eigen::Vector3d k = normal.ldlt().solve(rhs);
+  if (!k.allFinite()) return AddCusps(view, box, out);
+  const double slope = k.tail<2>().norm();
+  if (slope > kMaxTableSlope) k.tail<2>() *= kMaxTableSlope / slope;
+  const auto trend = [&](const Eigen::Vector2d& q) { return k(1) * q.x() + k(2) * q.y(); };
+  ToothView level = view;
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (map.Filled(c)) level.top.height[static_cast<std::size_t>(c)] -= trend(map.Centre(c));
+  }
+  const std::size_t first = out->size();
+  AddCusps(level, box, out);
+  for (std::size_t i = first; i < out->size(); ++i) {
+    Eigen::Vector3d& p = (*out)[i].landmark.p;
+    p += trend(map.axes.Plane(p)) * map.axes.up_J;
   }
 }
 
@@ -313,23 +348,33 @@ void AddIncisalEdge(const ToothView& view, const CrownBox& box, std::vector<Arch
                       "middle of the highest cells of the incisal edge's middle slice"));
 }
 
-// The central fossa: the lowest cell of the crown's middle.
+// The central fossa: the middle of the lowest cells of the crown's middle (within kFossaFloorMm
+// of the lowest: a worn or flat floor has no single lowest point).
 void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   int best = -1;
-  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
-    if (!view.top.Filled(c)) continue;
+  const auto in_middle = [&](int c) {
     const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
-    if (std::abs(x.x() - box.u_mid) > kFossaShare * box.length ||
-        std::abs(x.y() - box.v_mid) > kFossaShare * box.width)
-      continue;
+    return view.top.Filled(c) && std::abs(x.x() - box.u_mid) <= kFossaShare * box.length &&
+           std::abs(x.y() - box.v_mid) <= kFossaShare * box.width;
+  };
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (!in_middle(c)) continue;
     if (best < 0 || view.top.height[static_cast<std::size_t>(c)] <
                         view.top.height[static_cast<std::size_t>(best)])
       best = c;
   }
-  if (best >= 0) {
-    out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(best), 0.6,
-                        "lowest point of the occlusal surface's middle"));
+  if (best < 0) return;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    if (in_middle(c) && view.top.height[static_cast<std::size_t>(c)] <=
+                            view.top.height[static_cast<std::size_t>(best)] + kFossaFloorMm)
+      sum += view.top.Centre(c), ++n;
   }
+  const int at = view.top.CellAt(sum / n);
+  const int cell = at >= 0 && view.top.Filled(at) ? at : best;
+  out->push_back(Make(view, LandmarkType::kCentralFossa, view.top.Point_J(cell), 0.6,
+                      "middle of the lowest points of the occlusal surface's middle"));
 }
 
 // Contact points: a whole crown's most mesial / distal surface point near its top; on a scan,
@@ -337,7 +382,6 @@ void AddCentralFossa(const ToothView& view, const CrownBox& box, std::vector<Arc
 void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   for (const bool mesial : {true, false}) {
     const double sign = mesial ? 1.0 : -1.0;
-    const double end = mesial ? view.u_mesial : view.u_distal;
     const LandmarkType type = mesial ? LandmarkType::kMesial : LandmarkType::kDistal;
     const double across = kContactAcrossShare * box.width;
     if (view.whole_crown) {
@@ -358,7 +402,9 @@ void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLan
     for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
       if (!view.top.Filled(c)) continue;
       const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
-      if (sign * (end - x.x()) > kContactBandMm || std::abs(x.y() - box.v_mid) > across) continue;
+      if (sign * (EndU(view, x.y(), mesial) - x.x()) > kContactBandMm ||
+          std::abs(x.y() - box.v_mid) > across)
+        continue;
       if (best < 0 || view.top.height[static_cast<std::size_t>(c)] >
                           view.top.height[static_cast<std::size_t>(best)])
         best = c;
@@ -370,26 +416,61 @@ void AddContacts(const ToothView& view, const CrownBox& box, std::vector<ArchLan
   }
 }
 
-// Facial / lingual: the outermost surface point of the middle slice on each side at half the
-// clinical crown's height below the top.
+// The outermost point (sign +1: largest v, -1: smallest) on the `sign` side of v_mid where the
+// line u = u0, w = w0 across the arch meets the view's surface triangles (in tooth coordinates,
+// the point itself interpolated in J); false when it meets none there.
+bool OutermostOnLine(const ToothView& view, double u0, double w0, double sign, double v_mid,
+                     Eigen::Vector3d* p_J) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const auto& tri : view.surface_triangles) {
+    const Eigen::Vector3d& a = view.surface_uvw[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector3d& b = view.surface_uvw[static_cast<std::size_t>(tri[1])];
+    const Eigen::Vector3d& c = view.surface_uvw[static_cast<std::size_t>(tri[2])];
+    // Barycentric coordinates of (u0, w0) in the triangle projected on the (u, w) plane.
+    const double det = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+    if (std::abs(det) < 1e-12) continue;
+    const double l1 = ((u0 - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (w0 - a.z())) / det;
+    const double l2 = ((b.x() - a.x()) * (w0 - a.z()) - (u0 - a.x()) * (b.z() - a.z())) / det;
+    const double l0 = 1.0 - l1 - l2;
+    if (l0 < 0.0 || l1 < 0.0 || l2 < 0.0) continue;
+    const double v = l0 * a.y() + l1 * b.y() + l2 * c.y();
+    if (sign * (v - v_mid) <= 0.0 || sign * v <= best) continue;
+    best = sign * v;
+    *p_J = l0 * view.surface_J[static_cast<std::size_t>(tri[0])] +
+           l1 * view.surface_J[static_cast<std::size_t>(tri[1])] +
+           l2 * view.surface_J[static_cast<std::size_t>(tri[2])];
+  }
+  return std::isfinite(best);
+}
+
+// The highest cell of the crown on the `sign` side of its middle across (+1 facial, -1
+// lingual); the crown's top when that side has none.
+double SideTop(const ToothView& view, const CrownBox& box, double sign) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < view.top.nx * view.top.ny; ++c) {
+    const Eigen::Vector3d& x = view.top_uvw[static_cast<std::size_t>(c)];
+    if (view.top.Filled(c) && sign * (x.y() - box.v_mid) > 0.0) top = std::max(top, x.z());
+  }
+  return std::isfinite(top) ? top : box.top;
+}
+
+// Facial / lingual: the outermost surface point on each side, half the clinical crown's height
+// below that side's top (its own cusps or edge: molars tilt buccally in the upper jaw and
+// lingually in the lower, so one side's cusps stand 1-2 mm above the other's), in the crown's
+// middle along the arch there (between its cuts at that side's outline: a rotated crown's
+// middle moves along the arch from its lingual to its facial side).
 void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
-  const double target = box.top - 0.5 * kClinicalCrownShare *
-                                      TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
+  const double depth =
+      0.5 * kClinicalCrownShare * TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
   for (const bool facial : {true, false}) {
     const double sign = facial ? 1.0 : -1.0;
-    int best = -1;
-    for (std::size_t i = 0; i < view.surface_uvw.size(); ++i) {
-      const Eigen::Vector3d& x = view.surface_uvw[i];
-      if (std::abs(x.x() - box.u_mid) > kSliceMm || std::abs(x.z() - target) > kFacialHeightTolMm ||
-          sign * (x.y() - box.v_mid) <= 0.0)
-        continue;
-      if (best < 0 || sign * x.y() > sign * view.surface_uvw[static_cast<std::size_t>(best)].y())
-        best = static_cast<int>(i);
-    }
-    if (best >= 0) {
-      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual,
-                          view.surface_J[static_cast<std::size_t>(best)], 0.5,
-                          "outer surface of the middle slice, half the clinical crown down"));
+    const double target = SideTop(view, box, sign) - depth;
+    const double v_side = box.v_mid + sign * 0.5 * box.width;
+    const double u0 = 0.5 * (EndU(view, v_side, true) + EndU(view, v_side, false));
+    Eigen::Vector3d p_J = Eigen::Vector3d::Zero();
+    if (OutermostOnLine(view, u0, target, sign, box.v_mid, &p_J)) {
+      out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual, p_J, 0.5,
+                          "outer surface of the crown's middle, half the clinical crown down"));
     }
   }
 }
@@ -471,7 +552,7 @@ std::vector<ArchLandmark> DetectToothLandmarks(const ToothView& view, double too
   } else if (position == 3) {
     AddCanineTip(view, box, &out);
   } else {
-    AddCusps(view, box, &out);
+    AddTiltedCusps(view, box, &out);
   }
   if (position >= 4) AddCentralFossa(view, box, &out);
   AddContacts(view, box, &out);

@@ -1,14 +1,16 @@
 // The landmarks of ../shared/docs/clinical.md on one tooth, found geometrically in its tooth
 // view: cusp tips as the middle of the plateau of the highest local maximum of the occlusal
-// surface in each cusp's region of the crown (mesial / distal halves or thirds, buccal /
-// lingual halves), a canine's tip as the middle of the highest cells of its region mesial of the
-// crown's middle (along the arch, then across the slice there: a worn tip is flat), the incisal
-// edge's middle as the middle of its ridge's highest cells, the central fossa as the lowest point
-// of the crown's middle, contact points at the crown's mesial and distal ends (between two whole
-// crowns: their closest points, PlaceContacts), and facial / lingual points on the outer
-// surfaces of the middle slice halfway down the clinical crown. A cusp whose region holds no
-// local maximum is left out, except those a relationship rests on (buccal and mesiobuccal /
-// middle buccal cusps): they take the region's highest cell, confidence 0.4.
+// surface (its height above the plane of the crown's occlusal table: crowns are inclined) in each
+// cusp's region of the crown (mesial / distal halves or thirds, buccal / lingual halves), a
+// canine's tip as the middle of the highest cells of its region mesial of the crown's middle
+// (along the arch, then across the slice there: a worn tip is flat), the incisal edge's middle
+// as the middle of its ridge's highest cells, the central fossa as the middle of the lowest
+// points of the crown's middle (its floor), contact points at the crown's mesial and distal ends
+// (between two whole crowns: their closest points, PlaceContacts), and facial / lingual points
+// where the crown's surface triangles cross its middle on each side, halfway down the clinical
+// crown from that side's top. A cusp whose region holds no local maximum is left out, except
+// those a relationship rests on (buccal and mesiobuccal / middle buccal cusps): they take the
+// region's highest cell, confidence 0.4.
 #pragma once
 
 #include <vector>

@@ -15,6 +15,9 @@ constexpr double kMinToothExtentMm = 3.0, kMaxToothExtentMm = 16.0;  // across t
 constexpr std::size_t kMinShellTeeth = 4;  // fewer tooth-like shells: segment instead
 constexpr double kShellConfidence = 0.7;   // numbered by arch order only
 constexpr double kCrownHalfWidthMm = 8.0;  // the crown band around the curve, for profiles
+// A cut between two segmented crowns follows their valley within this reach of the boundary
+// along the arch, and within this share of the narrower crown's width.
+constexpr double kCutReachMm = 2.0, kCutReachShare = 0.3;
 
 int Find(std::vector<int>& parent, int v) {
   while (parent[static_cast<std::size_t>(v)] != v) {
@@ -102,6 +105,24 @@ std::vector<ToothRegion> FromShells(const io::TriangleMesh& mesh, const ArchGeom
   return teeth;
 }
 
+// The cuts of segmented teeth (right to left, neighbours sharing their boundaries): the valley
+// between neighbours, straight cuts at the arch's two ends.
+void CutBetweenCrowns(const ArchGeometry& g, std::vector<ToothRegion>* teeth) {
+  for (std::size_t k = 0; k < teeth->size(); ++k) {
+    ToothRegion& r = (*teeth)[k];
+    if (k == 0) r.right_cut = StraightCut(r.s_lo);
+    if (k + 1 == teeth->size()) {
+      r.left_cut = StraightCut(r.s_hi);
+      continue;
+    }
+    ToothRegion& next = (*teeth)[k + 1];
+    const double narrower = std::min(r.s_hi - r.s_lo, next.s_hi - next.s_lo);
+    r.left_cut = FindToothCut(g, r.s_hi, std::min(kCutReachMm, kCutReachShare * narrower));
+    next.right_cut = r.left_cut;
+    r.s_hi = next.s_lo = r.left_cut.At(0.0);
+  }
+}
+
 }  // namespace
 
 std::vector<std::vector<std::int32_t>> Components(const io::TriangleMesh& mesh) {
@@ -140,6 +161,7 @@ std::vector<ToothRegion> FindTeeth(const io::TriangleMesh& mesh, const ArchGeome
       r.confidence = span.confidence;
       teeth.push_back(std::move(r));
     }
+    CutBetweenCrowns(g, &teeth);
   }
   // Right to left: the right side's teeth from the back, then the left side's from the front.
   std::sort(teeth.begin(), teeth.end(), [](const ToothRegion& a, const ToothRegion& b) {

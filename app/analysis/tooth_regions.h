@@ -1,6 +1,7 @@
 // Which surface belongs to which tooth: mesh parts carrying tooth numbers (3Shape part files,
 // the synthetic pair), else separate shells numbered along the arch from the midline, else
-// spans of the arch curve cut out of a single surface (tooth_segmentation.h).
+// spans of the arch curve cut out of a single surface (tooth_segmentation.h), each between the
+// cuts along the valleys to its neighbours (tooth_cut.h).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 
 #include "arch_analysis.h"
 #include "arch_geometry.h"
+#include "tooth_cut.h"
 
 namespace occlude::analysis {
 
@@ -17,6 +19,7 @@ struct ToothRegion {
   ToothSource source = ToothSource::kSegmented;
   std::vector<std::int32_t> triangles;  ///< parts and shells: the tooth's triangles
   double s_lo = 0.0, s_hi = 0.0;        ///< segmented: its span along the curve, mm
+  ToothCut right_cut, left_cut;  ///< segmented: its cuts across the arch (s_lo, s_hi at t = 0)
   double confidence = 0.0;
 };
 

@@ -40,6 +40,10 @@ Eigen::Vector3d Uvw(const ArchCurve::Projection& st, double h, double s_mid, dou
   return {sign * (st.s - s_mid), st.t, h};
 }
 
+bool Between(const ToothView& view, const ArchCurve::Projection& st) {
+  return st.s >= view.right_cut.At(st.t) && st.s <= view.left_cut.At(st.t);
+}
+
 // Fills top_uvw from the cells' projections and the u range of the crown from its cells.
 void FillTop(const ArchGeometry& g, ToothView* view) {
   view->top_uvw.assign(view->top.height.size(), Eigen::Vector3d::Zero());
@@ -57,9 +61,33 @@ void FillTop(const ArchGeometry& g, ToothView* view) {
   }
 }
 
+// The triangles `triangles` of `mesh` (all when empty) whose three vertices the view holds
+// (`index`: per mesh vertex its index in the view, -1 when not in it).
+void AddTriangles(const io::TriangleMesh& mesh, const std::vector<std::int32_t>& triangles,
+                  const std::vector<std::int32_t>& index, ToothView* view) {
+  const std::size_t n = triangles.empty() ? mesh.num_triangles() : triangles.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto t = triangles.empty() ? k : static_cast<std::size_t>(triangles[k]);
+    std::array<std::int32_t, 3> tri{};
+    bool inside = true;
+    for (int c = 0; c < 3; ++c) {
+      tri[static_cast<std::size_t>(c)] = index[static_cast<std::size_t>(mesh.triangles[t][c])];
+      inside = inside && tri[static_cast<std::size_t>(c)] >= 0;
+    }
+    if (inside) view->surface_triangles.push_back(tri);
+  }
+}
+
 }  // namespace
 
 double MesialSign(int fdi) { return (fdi / 10 == 1 || fdi / 10 == 4) ? 1.0 : -1.0; }
+
+double EndU(const ToothView& view, double v, bool mesial) {
+  if (view.right_cut.s.empty()) return mesial ? view.u_mesial : view.u_distal;
+  // Mesial is towards increasing arc length (the left cut) on the patient's right.
+  const ToothCut& cut = (mesial == (view.mesial_sign > 0.0)) ? view.left_cut : view.right_cut;
+  return view.mesial_sign * (cut.At(v) - view.s_mid);
+}
 
 Eigen::Vector3d ToothCoordinates(const ArchGeometry& g, double s_mid, double mesial_sign,
                                  const Eigen::Vector3d& p_J) {
@@ -67,33 +95,37 @@ Eigen::Vector3d ToothCoordinates(const ArchGeometry& g, double s_mid, double mes
 }
 
 ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi,
-                             io::Jaw jaw, double s_lo, double s_hi, double half_width_mm,
-                             double depth_mm) {
+                             io::Jaw jaw, const ToothCut& right, const ToothCut& left,
+                             double half_width_mm, double depth_mm) {
   ToothView view;
   view.fdi = fdi;
   view.jaw = jaw;
-  view.s_mid = 0.5 * (s_lo + s_hi);
+  view.right_cut = right;
+  view.left_cut = left;
+  view.s_mid = 0.5 * (right.At(0.0) + left.At(0.0));
   view.mesial_sign = MesialSign(fdi);
-  view.u_mesial = 0.5 * (s_hi - s_lo);
+  view.u_mesial = 0.5 * (left.At(0.0) - right.At(0.0));
   view.u_distal = -view.u_mesial;
   std::vector<int> cells;
   double top = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < g.top.nx * g.top.ny; ++c) {
     const ArchCurve::Projection& st = g.cell_st[static_cast<std::size_t>(c)];
-    if (!g.top.Filled(c) || st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm) continue;
+    if (!g.top.Filled(c) || !Between(view, st) || std::abs(st.t) > half_width_mm) continue;
     cells.push_back(c);
     top = std::max(top, g.top.height[static_cast<std::size_t>(c)]);
   }
   view.top = Crop(g.top, cells);
   FillTop(g, &view);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const ArchCurve::Projection& st = g.vertex_st[v];
     const double h = g.axes.Height(mesh.vertices[v]);
-    if (st.s < s_lo || st.s > s_hi || std::abs(st.t) > half_width_mm || h < top - depth_mm)
-      continue;
+    if (!Between(view, st) || std::abs(st.t) > half_width_mm || h < top - depth_mm) continue;
+    index[v] = static_cast<std::int32_t>(view.surface_J.size());
     view.surface_J.push_back(mesh.vertices[v]);
     view.surface_uvw.push_back(Uvw(st, h, view.s_mid, view.mesial_sign));
   }
+  AddTriangles(mesh, {}, index, &view);
   return view;
 }
 
@@ -111,17 +143,18 @@ ToothView ShellToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, in
   }
   view.s_mid = 0.5 * (Quantile(s, 0.01) + Quantile(s, 0.99));
   FillTop(g, &view);
-  std::vector<char> used(mesh.num_vertices(), 0);
+  std::vector<std::int32_t> index(mesh.num_vertices(), -1);
   for (const std::int32_t t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const auto v = static_cast<std::size_t>(mesh.triangles[static_cast<std::size_t>(t)][k]);
-      if (used[v]) continue;
-      used[v] = 1;
+      if (index[v] >= 0) continue;
+      index[v] = static_cast<std::int32_t>(view.surface_J.size());
       view.surface_J.push_back(mesh.vertices[v]);
       view.surface_uvw.push_back(
           Uvw(g.vertex_st[v], g.axes.Height(mesh.vertices[v]), view.s_mid, view.mesial_sign));
     }
   }
+  AddTriangles(mesh, triangles, index, &view);
   return view;
 }
 

@@ -4,7 +4,9 @@
 // on into the neighbour tops out at the cut, a local maximum of the view that is no cusp: the
 // mesiobuccal cusp is the real one inside. The lower first molar's buccal cusps fall into their
 // slots by Wheeler's widths: the distobuccal one 0.2 of the length distal of the middle is the
-// `middle_buccal_cusp`, not the distal cusp.
+// `middle_buccal_cusp`, not the distal cusp. The central fossa is the middle of a flat floor,
+// not a shallow pit at its side. An inclined crown's cusps are found above the plane of its
+// occlusal table, at their tips.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -108,6 +110,48 @@ TEST(MolarCusps, AWornCuspWithoutAPeakAtItsSlotsMiddle) {
   EXPECT_NEAR(mb->landmark.p.x(), length / 3.0, 0.5) << mb->landmark.p.transpose();
   EXPECT_NEAR(mb->landmark.p.y(), kRidgeV, kMolarCuspTolMm) << mb->landmark.p.transpose();
   EXPECT_LT(mb->confidence, 0.5);
+}
+
+// Upper first molar whose occlusal basin (between four cusps) has a flat floor 3 mm across at
+// w = 1, with a pit 0.25 mm deep and 0.8 mm wide at (1.2, 0.4) mm, off its middle: the single
+// lowest cell is the pit, the fossa the floor's middle (the crown's middle fifth, 2.2 x 2 mm).
+TEST(MolarCusps, CentralFossaTheMiddleOfAFlatFloorNotAPitAtItsSide) {
+  constexpr double kFloorMm = 1.0, kPitMm = 0.25, kPitU = 1.2, kPitV = 0.4;
+  const auto crown = [&](double u, double v) {
+    const double basin = std::max(kFloorMm, 0.4 * std::hypot(u, v) - 0.2);
+    const double pit = std::hypot(u - kPitU, v - kPitV) < 0.4 ? kPitMm : 0.0;
+    return basin - pit + MolarCusp(u, v, 2.5, 2.5, 1.5) + MolarCusp(u, v, -2.5, 2.5, 1.5) +
+           MolarCusp(u, v, 2.0, -2.5, 1.5) + MolarCusp(u, v, -2.5, -2.5, 1.5);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(16, io::Jaw::kUpper, crown), 1.0);
+  const ArchLandmark* fossa = FindCusp(found, io::LandmarkType::kCentralFossa);
+  ASSERT_NE(fossa, nullptr);
+  EXPECT_LT(fossa->landmark.p.head<2>().norm(), 0.5) << fossa->landmark.p.transpose();
+}
+
+// Upper first molar inclined buccally across the arch by 0.3 mm per mm (its buccal cusps 2.4 mm
+// above its palatal ones along the occlusal axis, the curve of Wilson), four broad cusps 1 mm
+// high: on the view the buccal cusps' local maxima lie 0.8 mm palatal of their tips. Above the
+// plane of its occlusal table they are where the tips are.
+TEST(MolarCusps, AnInclinedCrownsBuccalCuspAtItsTip) {
+  constexpr double kIncline = -0.3, kCuspV = 2.5, kCuspU = 2.5;
+  const auto broad = [](double u, double v, double u0, double v0) {
+    const double r2 = (u - u0) * (u - u0) + (v - v0) * (v - v0);
+    return std::exp(-r2 / (2.0 * 1.5 * 1.5));
+  };
+  const auto crown = [&](double u, double v) {
+    return 3.0 + kIncline * v + broad(u, v, kCuspU, kCuspV) + broad(u, v, -kCuspU, kCuspV) +
+           broad(u, v, kCuspU, -kCuspV) + broad(u, v, -kCuspU, -kCuspV);
+  };
+  const std::vector<ArchLandmark> found =
+      DetectToothLandmarks(MolarView(16, io::Jaw::kUpper, crown), 1.0);
+  const ArchLandmark* mb = FindCusp(found, io::LandmarkType::kMbCusp);
+  ASSERT_NE(mb, nullptr);
+  EXPECT_NEAR(mb->landmark.p.x(), kCuspU, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  EXPECT_NEAR(mb->landmark.p.y(), kCuspV, kMolarCuspTolMm) << mb->landmark.p.transpose();
+  // On the surface: its height there.
+  EXPECT_NEAR(mb->landmark.p.z(), crown(mb->landmark.p.x(), mb->landmark.p.y()), 0.1);
 }
 
 }  // namespace
