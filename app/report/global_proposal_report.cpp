@@ -244,6 +244,7 @@ Eigen::Isometry3d GlobalProposeAndReport(const CaseConfig& config_in, const std:
   CaseSession session(config, memory_budget_mb);
   const CaseAnalysis& analysis = session.Analysis();  // given landmarks ([landmarks]) applied
   const planner::GlobalResult result = RunGlobalSearch(config, session, analysis);
+  session.ReleaseCoarseOracles();  // the report reads the finest only
   PrintSeats(config, result, analysis);
   if (result.proposals.empty()) {
     throw UserError(config.file.string() + ": clinical: no seat of the " +

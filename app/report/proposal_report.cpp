@@ -46,6 +46,7 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
       throw UserError(config.file.string() + ": " + e.what());
     }
   }
+  session.ReleaseCoarseOracles();  // the report reads the finest only
   const planner::Proposal& best = result.proposals.front();
   SearchSummary summary{"propose", "the config's [start] pose", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};

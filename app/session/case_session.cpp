@@ -6,6 +6,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "base/user_error.h"
 #include "occlude/collision/arch_frame.h"
 #include "occlude/collision/region_of_interest.h"
@@ -66,12 +70,25 @@ std::vector<double> ScheduleVoxels(const CaseConfig& config) {
   return ScheduleVoxels(config.VoxelSizeMm());
 }
 
+namespace {
+
+// The options every oracle of a session shares before its stage's: the config's sample spacing,
+// and none of the structures only queries between the two trees read (a session asks the
+// oracle alone).
+collision::OracleOptions SessionOracleBase(const CaseConfig& config) {
+  collision::OracleOptions base;
+  base.sample_spacing_mm = config.sample_spacing_mm;
+  base.tree_queries = false;
+  return base;
+}
+
+}  // namespace
+
 collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const JawPair& jaws,
                                                 double voxel_mm) {
   // (The config's voxel size is its resolution choice; the guard asks about others.)
   const std::vector<double> voxels = ScheduleVoxels(voxel_mm);
-  collision::OracleOptions base;
-  base.sample_spacing_mm = config.sample_spacing_mm;
+  const collision::OracleOptions base = SessionOracleBase(config);
   collision::MemoryEstimate total;
   for (std::size_t i = 0; i < voxels.size(); ++i) {
     total += collision::EstimateOracleMemory(*jaws.lower_L, *jaws.upper_U,
@@ -161,8 +178,7 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
   const std::vector<double> voxels = ScheduleVoxels(config_);
   if (oracles_.empty()) oracles_.resize(voxels.size());
   if (!oracles_[index]) {
-    collision::OracleOptions base;
-    base.sample_spacing_mm = config_.sample_spacing_mm;
+    collision::OracleOptions base = SessionOracleBase(config_);
     base.arch = arch_;
     const collision::OracleOptions options = planner::StageOracleOptions(base, voxels, index);
     OracleModel model{options.voxel_size_mm, std::nullopt, 0, 0.0};
@@ -219,12 +235,27 @@ const planner::OracleSchedule& CaseSession::Schedule() {
   return stages_;
 }
 
+void CaseSession::ReleaseCoarseOracles() {
+  stages_.clear();
+  for (std::size_t i = 0; i + 1 < oracles_.size(); ++i) oracles_[i].reset();
+#if defined(__GLIBC__)
+  // glibc keeps freed blocks of its arenas for reuse (its mmap threshold grows past the
+  // oracles' arrays once large blocks were freed); hand the freed pages back.
+  malloc_trim(0);
+#endif
+}
+
 const collision::JawOracle& CaseSession::FinestOracle() {
   const std::size_t last = ScheduleVoxels(config_).size() - 1;
   if (!config_.region_of_interest) return Oracle(last);
+  // The schedule's finest is that oracle when the region kept the whole jaws.
+  if (!whole_finest_ && last < oracles_.size() && oracles_[last] &&
+      &oracles_[last]->lower_tree().mesh() == jaws_.lower_L.get() &&
+      &oracles_[last]->upper_tree().mesh() == jaws_.upper_U.get()) {
+    return *oracles_[last];
+  }
   if (!whole_finest_) {
-    collision::OracleOptions base;
-    base.sample_spacing_mm = config_.sample_spacing_mm;
+    collision::OracleOptions base = SessionOracleBase(config_);
     base.arch = arch_;
     const collision::OracleOptions options =
         planner::StageOracleOptions(base, ScheduleVoxels(config_), last);

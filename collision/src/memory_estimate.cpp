@@ -141,7 +141,9 @@ MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L,
                                     const io::TriangleMesh& upper_U, const OracleOptions& options) {
   SphereTreeOptions tree;
   tree.voxelize.voxel_size_mm = options.voxel_size_mm;
+  tree.build_explicit = options.tree_queries;
   MemoryEstimate total = EstimateSphereTreeMemory(lower_L, tree);
+  tree.build_distance_bound = options.tree_queries;
   total += EstimateSphereTreeMemory(upper_U, tree);
   // The field reuses the lower tree's grid, so its lists are not a new transient.
   MemoryEstimate field =

@@ -171,6 +171,7 @@ std::uint64_t OracleCacheKey(const io::TriangleMesh& lower_L, const io::Triangle
   for (const int v : {options.sdf_dilation_voxels, options.cell_level, options.lower_level})
     h.AddValue(v);
   h.AddValue(static_cast<std::uint8_t>(options.distance_bound));
+  h.AddValue(static_cast<std::uint8_t>(options.tree_queries));
   h.AddValue(static_cast<std::uint8_t>(options.arch.has_value()));
   if (options.arch) {
     const ArchFrame& a = *options.arch;

@@ -201,6 +201,8 @@ float Radius(const std::vector<Eigen::Vector4f>& offsets, std::size_t first, std
 void JawOracle::BuildUpperSide(std::shared_ptr<const io::TriangleMesh> upper_U, int threads) {
   SphereTreeOptions tree_options;
   tree_options.voxelize.voxel_size_mm = options_.voxel_size_mm;
+  tree_options.build_explicit = options_.tree_queries;
+  tree_options.build_distance_bound = options_.tree_queries;
   tree_options.threads = threads;
   upper_ = SphereTree::Build(std::move(upper_U), tree_options);
   const io::TriangleMesh& up = upper_.mesh();

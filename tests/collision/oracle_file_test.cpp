@@ -1,7 +1,7 @@
 // Saved oracles (oracle_file.h): a loaded oracle answers bit-identically to the built one at
 // every level; truncated, corrupt, foreign, older and mismatched bytes are all rejected with
-// their reason; the cache key changes with any mesh byte or option field; and the oracle's
-// answers are the same for any build thread count.
+// their reason; the cache key changes with any mesh byte or option field; the oracle's
+// answers are the same for any build thread count and without the tree-pair structures.
 #include "occlude/collision/oracle_file.h"
 
 #include <gtest/gtest.h>
@@ -212,6 +212,7 @@ TEST_F(OracleFileTest, KeyChangesWithAnyMeshBitOrOptionField) {
       [](OracleOptions* o) { o->field_bound_mm = 0.15; },
       [](OracleOptions* o) { o->field_bound_depth_mm = 0.2; },
       [](OracleOptions* o) { o->arch = ArchFrame(); },
+      [](OracleOptions* o) { o->tree_queries = false; },
   };
   for (std::size_t i = 0; i < changes.size(); ++i) {
     OracleOptions o = options_;
@@ -249,6 +250,25 @@ TEST_F(OracleFileTest, AnswersAreTheSameForAnyBuildThreadCount) {
     o.threads = threads;
     EXPECT_EQ(AnswersDigest(JawOracle(lower_, upper_, o)), AnswersDigest(*built_)) << threads;
   }
+}
+
+// Without the structures only tree-pair queries read (OracleOptions::tree_queries), the oracle
+// answers bit-identically at every level, holds less, and saves and loads as itself.
+TEST_F(OracleFileTest, WithoutTreeQueryStructuresAnswersAlikeInLessMemory) {
+  OracleOptions o = options_;
+  o.tree_queries = false;
+  const JawOracle lean(lower_, upper_, o);
+  EXPECT_EQ(AnswersDigest(lean), AnswersDigest(*built_));
+  EXPECT_TRUE(lean.lower_tree().explicit_spheres().empty());
+  EXPECT_TRUE(lean.upper_tree().explicit_spheres().empty());
+  EXPECT_TRUE(lean.upper_tree().distance_bound().empty());
+  EXPECT_FALSE(lean.lower_tree().distance_bound().empty());  // the oracle reads it
+  EXPECT_FALSE(built_->lower_tree().explicit_spheres().empty());
+  EXPECT_LT(lean.MemoryBytes(), built_->MemoryBytes());
+  const JawOracle loaded = LoadOracle(SaveOracle(lean), lower_, upper_, o);
+  EXPECT_EQ(AnswersDigest(loaded), AnswersDigest(*built_));
+  // A file of the full oracle is not taken for the lean one, nor the other way round.
+  EXPECT_THROW(LoadOracle(*bytes_, lower_, upper_, o), OracleFileError);
 }
 
 }  // namespace
