@@ -256,10 +256,10 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   a.timings_s.emplace_back("oracle query", NowSeconds() - t0);
 
   t0 = NowSeconds();
-  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower, *jaws.lower_L, a.reach_mm);
+  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower(), *jaws.lower_L, a.reach_mm);
   a.lower_vertex_mm =
-      VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper, *jaws.upper_U, a.reach_mm);
-  Attribute(jaws, maps.lower, &a);
+      VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper(), *jaws.upper_U, a.reach_mm);
+  Attribute(jaws, maps.lower(), &a);
   a.timings_s.emplace_back("map distances", NowSeconds() - t0);
 
   t0 = NowSeconds();

@@ -279,10 +279,23 @@ const MapFields& CaseSession::Maps() {
   if (!maps_) {
     StepClock clock;
     clock.Start("built the distance fields of the maps");
-    maps_ =
-        std::make_unique<MapFields>(MapFields{MapField(jaws_.lower_L), MapField(jaws_.upper_U)});
+    maps_ = std::make_unique<MapFields>();
+    maps_->shared_lower = WholeLowerField();
+    if (maps_->shared_lower == nullptr) maps_->own_lower = MapField(jaws_.lower_L);
+    maps_->own_upper = MapField(jaws_.upper_U);
   }
   return *maps_;
+}
+
+const collision::NarrowBandSdf* CaseSession::WholeLowerField() const {
+  // Built oracles only (building one for this would cost more than the map field), the finest
+  // first: it is never released.
+  const std::size_t last = ScheduleVoxels(config_).size() - 1;
+  for (const collision::JawOracle* o :
+       {whole_finest_.get(), last < oracles_.size() ? oracles_[last].get() : nullptr}) {
+    if (o != nullptr && &o->lower_tree().mesh() == jaws_.lower_L.get()) return &o->lower_sdf();
+  }
+  return nullptr;
 }
 
 namespace {

@@ -44,9 +44,15 @@ std::vector<double> ScheduleVoxels(double finest_mm);
 collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const JawPair& jaws,
                                                 double voxel_mm);
 
-/// Exact distance fields of both meshes for the report's vertex maps.
+/// Exact distance fields of both meshes for the report's vertex maps. Exact distances do not
+/// depend on a field's voxel size, so the lower's is the finest oracle's field when that oracle
+/// models the whole lower jaw (the session owns it), else one of its own, as is the upper's.
 struct MapFields {
-  collision::NarrowBandSdf lower, upper;
+  const collision::NarrowBandSdf& lower() const { return shared_lower ? *shared_lower : own_lower; }
+  const collision::NarrowBandSdf& upper() const { return own_upper; }
+
+  const collision::NarrowBandSdf* shared_lower = nullptr;
+  collision::NarrowBandSdf own_lower, own_upper;
 };
 
 class CaseSession {
@@ -110,7 +116,9 @@ class CaseSession {
   std::vector<std::unique_ptr<collision::JawOracle>> oracles_;
   planner::OracleSchedule stages_;
   const collision::JawOracle& Oracle(std::size_t index);
-  std::unique_ptr<MapFields> maps_;
+  std::unique_ptr<MapFields> maps_;  ///< may point into the finest oracle (never released)
+  /// The lower field of a built oracle of the whole lower jaw at the finest voxel size, or null.
+  const collision::NarrowBandSdf* WholeLowerField() const;
   // Region of interest (session_region.h): the whole-jaw finest oracle when asked for, and
   // what every oracle built holds.
   std::unique_ptr<collision::JawOracle> whole_finest_;
