@@ -116,7 +116,9 @@ struct LocalResult {
 /// NLopt: minimize the seat cost of the set (COBYLA, BOBYQA or Sbplx), then settle.
 LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_evaluations);
-/// Ceres: least squares on the samples' signed distances (outer loop re-collects samples).
+/// Ceres: least squares on the samples' signed distances (outer loop re-collects samples and
+/// settles; a round that does not lower the settled seat cost is halved, then ends the loop
+/// with status kConverged).
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations);
 /// Global stage: `count` poses sampled uniformly in the bounds (seeded), each settled and
