@@ -214,7 +214,8 @@ std::vector<std::size_t> KindIndices(const std::vector<std::string>& asked) {
 
 // The seat of the reference: the best seat the local search reaches from the reference, as the
 // closing run of `validate --magnitudes 0:0` searches (coarse-to-fine with its internal starts,
-// within the bound margins of the reference; the reference itself is one of the starts).
+// within the bound margins of the reference; the reference itself is one of the starts),
+// polished as the global search polishes its seats.
 // A single local search from the reference can stall on a poor seat (c4-ios: 0.57 mm^2 of
 // contact where its internal starts find 23 mm^2 within 0.3 mm).
 planner::Proposal SeatOfReference(const planner::OracleSchedule& stages,
@@ -222,6 +223,7 @@ planner::Proposal SeatOfReference(const planner::OracleSchedule& stages,
   planner::PlanRequest r =
       BoundedRequest(o, Magnitude{}, planner::SolverKind::kCoarseToFine, X_ref);
   r.seed = o.seed;
+  r.polish = true;  // as the global search refines its seats
   return planner::Plan(stages, r).proposals.front();
 }
 

@@ -2,7 +2,8 @@
 // several kinds (column `start_kind`; ValidateOptions::global_kinds, by default the first
 // three), scored against the reference and against the seat of the reference (the best seat
 // the local search reaches from the reference itself: coarse-to-fine with its internal starts
-// within the bound margins, as validate's closing run 0:0):
+// within the bound margins, as validate's closing run 0:0, each result polished as the global
+// search polishes its seats, PlanRequest::polish):
 //   near:     today's perturbations (validate.h), start k at magnitude k mod the magnitudes;
 //   sagittal: the reference shifted along the arch by 3-12 mm either way plus up to 10 deg
 //             (planner/global_starts.h);

@@ -4,11 +4,15 @@
 // Chang et al. 2010) with analytic Jacobians, on
 // a pose manifold whose update is a rigid motion about the pivot applied on
 // the left (translation, then rotation vector). An outer loop re-collects the
-// samples near the lower surface and settles the pose on the constraint.
+// samples near the lower surface and settles the pose on the constraint; a
+// round is kept only when it lowers the seat cost of the settled pose (else
+// its half step, else the rounds stop): the rounds' least-squares optimum is
+// not that cost's, and unguarded they wander along flat seats.
 #include <ceres/ceres.h>
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "least_squares_internal.h"
 
@@ -203,6 +207,14 @@ bool SolveAndSettle(const OracleStage& stage, const SampleSet& samples, const Pr
   return true;
 }
 
+// The seat cost of the set at a settled pose x (settled poses are compared on it: each sits at
+// the penetration limit), counted as one evaluation.
+double SettledCost(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
+                   const Vector6d& x, LocalResult* result) {
+  ++result->evaluations;
+  return EvaluateSet(stage, samples, PoseOf(problem, x), problem).seat_cost;
+}
+
 }  // namespace
 
 // The rounds of solve-and-settle stop when a round moves no parameter by more than this
@@ -222,6 +234,7 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
     return result;
   }
   Vector6d x = x0;
+  double cost = std::numeric_limits<double>::infinity();  // of x once a round has settled it
   double change = 0.0;
   int rounds = 0;
   for (int outer = 0; outer < max_outer; ++outer) {
@@ -230,9 +243,24 @@ LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const
       break;
     }
     ++rounds;
-    const Vector6d before = x;
-    if (!SolveAndSettle(stage, samples, problem, settings, locked, &x, &result)) break;
-    change = (x - before).cwiseAbs().maxCoeff();
+    Vector6d trial = x;
+    if (!SolveAndSettle(stage, samples, problem, settings, locked, &trial, &result)) break;
+    double trial_cost = SettledCost(stage, samples, problem, trial, &result);
+    if (!(trial_cost < cost)) {
+      const Vector6d half = SettleOnSet(stage, samples, problem,
+                                        Clamp(problem, x + 0.5 * (trial - x)), &result.evaluations);
+      const double half_cost = SettledCost(stage, samples, problem, half, &result);
+      if (!(half_cost < cost)) {
+        result.status = SolveStatus::kConverged;
+        result.message += "; no further descent of the settled seat cost";
+        break;
+      }
+      trial = half;
+      trial_cost = half_cost;
+    }
+    change = (trial - x).cwiseAbs().maxCoeff();
+    x = trial;
+    cost = trial_cost;
     if (change < kOuterTolerance) {
       result.status = SolveStatus::kConverged;
       break;

@@ -35,6 +35,7 @@ LocalResult LastStageSolve(const SearchContext& c, const Vector6d& start) {
   LocalResult r = req.solver == SolverKind::kNloptLocal
                       ? NloptLocal(stage, c.sets[last], *c.problem, x, req.max_evaluations)
                       : CeresLocal(stage, c.sets[last], *c.problem, x, 6, req.max_evaluations);
+  if (req.polish) r.x = Polish(stage, c.sets[last], *c.problem, r.x, PolishSettings{}, &evals);
   r.evaluations += evals;
   return r;
 }
@@ -61,6 +62,8 @@ LocalResult StagedSolve(const SearchContext& c, const Vector6d& start, std::size
     }
     evals += stage_result.evaluations;
     x = stage_result.x;
+    if (req.polish && s == sch.size() - 1)
+      x = Polish(sch[s], c.sets[s], *c.problem, x, PolishSettings{}, &evals);
   }
   LocalResult r = stage_result;
   r.x = x;

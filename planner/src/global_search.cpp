@@ -79,6 +79,7 @@ PlanRequest SearchRequest(const GlobalRequest& g, const Eigen::Isometry3d& X_LU_
   r.pivot_L.reset();
   r.num_starts = 1;
   r.num_global_samples = 0;
+  r.polish = true;
   r.max_seconds = 0.0;
   r.on_progress = nullptr;
   return r;

@@ -107,6 +107,17 @@ Vector6d SettleOnSet(const OracleStage& stage, const SampleSet& samples, const P
 Vector6d SettleOnOracle(const OracleStage& stage, const Problem& problem, const Vector6d& x,
                         int* evaluations);
 
+/// The polish of a pose on the last stage (polish.cpp): a pattern search on the seat cost of
+/// the stage's samples at the pose settled on the stage's oracle, over the five motions that
+/// leave the settle direction free (along the arch's anterior and lateral axes; about its
+/// occlusal, lateral and anterior axes through the pivot, turning by step / lever where the
+/// lever is the arch's reach from the pivot).
+struct PolishSettings {
+  double step_mm = 0.1;        ///< first step (mm at the arch's far end)
+  double min_step_mm = 0.025;  ///< stops below this step
+  int max_costs = 40;          ///< settled costs at most
+};
+
 struct LocalResult {
   Vector6d x = Vector6d::Zero();
   SolveStatus status = SolveStatus::kFailed;
@@ -116,9 +127,15 @@ struct LocalResult {
 /// NLopt: minimize the seat cost of the set (COBYLA, BOBYQA or Sbplx), then settle.
 LocalResult NloptLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_evaluations);
-/// Ceres: least squares on the samples' signed distances (outer loop re-collects samples).
+/// Ceres: least squares on the samples' signed distances (outer loop re-collects samples and
+/// settles; a round that does not lower the settled seat cost is halved, then ends the loop
+/// with status kConverged).
 LocalResult CeresLocal(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
                        const Vector6d& x0, int max_outer, int max_evaluations);
+/// The best pose the pattern search finds from x, settled on the stage's oracle (x itself,
+/// settled, when no motion lowers its cost). Adds its oracle queries to *evaluations.
+Vector6d Polish(const OracleStage& stage, const SampleSet& samples, const Problem& problem,
+                const Vector6d& x, const PolishSettings& settings, int* evaluations);
 /// Global stage: `count` poses sampled uniformly in the bounds (seeded), each settled and
 /// ranked by the seat cost on the set; returns them best first.
 std::vector<Vector6d> GlobalSeeds(const OracleStage& stage, const SampleSet& samples,

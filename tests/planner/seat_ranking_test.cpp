@@ -1,7 +1,7 @@
 // RankSeats on hand-made seats: without a judge the order is kept; with one,
-// the inadmissible seats are set aside, feasible seats of comparable contact
-// and seat depth ordered by penalty (ties keep the seat cost order), the others
-// after them; the count kept; bad settings and penalties rejected.
+// the inadmissible seats are set aside, feasible seats of comparable seat depth
+// (and contact, when asked) ordered by penalty (ties keep the seat cost order),
+// the others after them; the count kept; bad settings and penalties rejected.
 #include "occlude/planner/seat_ranking.h"
 
 #include <gtest/gtest.h>
@@ -89,11 +89,33 @@ TEST(RankSeatsTest, AShallowSeatDoesNotCompeteOnThePenalty) {
   // Depths unknown (0 everywhere, as in Seats()): the contact floor alone, as before the depth.
   ranking.judge = ByTable;  // Seats() has ids 0-4; the table above covers 0-2 only
   ranking.comparable_depth = 0.55;
+  ranking.comparable_contact = 0.5;
   SeatRanking by_contact_alone = ranking;
   by_contact_alone.comparable_depth = 0.0;
   EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals),
             Ids(RankSeats(Seats(), by_contact_alone, 10).proposals));
   EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals), (std::vector<int>{3, 2, 0, 1, 4}));
+}
+
+// c4-ios's pattern: the seat of the reference refined 0.1 mm above its bottom (1 mm^2 of
+// contact in the band, depth 10.3, penalty 0.48) and a seat 1.3 mm away with one Class III
+// molar (14.6 mm^2, depth 9.1, penalty 2.0). By default the contact area sets no seat aside:
+// both compete on the penalty; a contact share of 0.5 would rank the worse seat first.
+TEST(RankSeatsTest, TheContactAreaAloneSetsNoSeatAsideByDefault) {
+  auto seat = [](int id, double mm2, double depth) {
+    GlobalProposal s = Seat(id, mm2);
+    s.seat_depth = depth;
+    return s;
+  };
+  const std::vector<GlobalProposal> seats = {seat(0, 1.0, 10.3), seat(1, 14.6, 9.1)};
+  SeatRanking ranking;
+  ranking.judge = [](const GlobalProposal& s) {
+    return SeatJudgement{true, s.basin == 0 ? 0.48 : 2.02, ""};
+  };
+  EXPECT_EQ(ranking.comparable_contact, 0.0);
+  EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{0, 1}));
+  ranking.comparable_contact = 0.5;
+  EXPECT_EQ(Ids(RankSeats(seats, ranking, 10).proposals), (std::vector<int>{1, 0}));
 }
 
 TEST(RankSeatsTest, HardConstraintsSetSeatsAside) {
@@ -104,10 +126,14 @@ TEST(RankSeatsTest, HardConstraintsSetSeatsAside) {
     return j;
   };
   const RankedSeats r = RankSeats(Seats(), ranking, 10);
-  // The best admissible feasible contact is now 24 mm2 (floor 12): seat 1 still below.
-  EXPECT_EQ(Ids(r.proposals), (std::vector<int>{2, 1, 4}));
+  // Seats 1 and 2 have equal penalties: the seat cost order.
+  EXPECT_EQ(Ids(r.proposals), (std::vector<int>{1, 2, 4}));
   EXPECT_EQ(Ids(r.excluded), (std::vector<int>{0, 3}));
   for (const auto& s : r.excluded) EXPECT_FALSE(s.judgement.admissible);
+  // With a contact floor, from the best admissible feasible contact (24 mm2, floor 12): seat 1
+  // falls below it.
+  ranking.comparable_contact = 0.5;
+  EXPECT_EQ(Ids(RankSeats(Seats(), ranking, 10).proposals), (std::vector<int>{2, 1, 4}));
 }
 
 TEST(RankSeatsTest, RejectsBadSettingsAndPenalties) {

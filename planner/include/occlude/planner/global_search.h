@@ -57,11 +57,12 @@ struct GlobalRequest {
   /// The local search each basin is refined with: solver (kCoarseToFine; kNloptGlobal also
   /// walks the stages; the single-stage solvers refine the best max_refined basins on the last
   /// stage only), band, penetration, seat objective, distinct thresholds, threads, seed,
-  /// max_evaluations. Its bounds widen the search's box (relative to the aligned pose, on
-  /// every axis: the scan's largest range plus open_mm plus the largest bound; rotations the
-  /// largest scan angle plus the largest bound, at most 90 deg). X_LU_start is the pose as
-  /// given: it only sets GlobalProposal::from_given. max_proposals: the seats returned.
-  /// num_starts, num_global_samples, pivot_L, locked, max_seconds and on_progress are not used.
+  /// max_evaluations; each seat is polished (PlanRequest::polish, always on here). Its bounds widen
+  /// the search's box (relative to the aligned pose, on every axis: the scan's largest range plus
+  /// open_mm plus the largest bound; rotations the largest scan angle plus the largest bound, at
+  /// most 90 deg). X_LU_start is the pose as given: it only sets GlobalProposal::from_given.
+  /// max_proposals: the seats returned. num_starts, num_global_samples, pivot_L, locked,
+  /// max_seconds and on_progress are not used.
   PlanRequest local;
   /// The clinical ranking of the distinct seats (seat_ranking.h): every distinct refined seat is
   /// judged, the inadmissible ones go to GlobalResult::excluded, the rest ranked, and the best
