@@ -249,10 +249,11 @@ const collision::JawOracle& CaseSession::FinestOracle() {
   const std::size_t last = ScheduleVoxels(config_).size() - 1;
   if (!config_.region_of_interest) return Oracle(last);
   // The schedule's finest is that oracle when the region kept the whole jaws.
-  if (!whole_finest_ && last < oracles_.size() && oracles_[last] &&
-      &oracles_[last]->lower_tree().mesh() == jaws_.lower_L.get() &&
-      &oracles_[last]->upper_tree().mesh() == jaws_.upper_U.get()) {
-    return *oracles_[last];
+  const collision::JawOracle* scheduled = BuiltScheduledFinest();
+  if (!whole_finest_ && scheduled != nullptr &&
+      &scheduled->lower_tree().mesh() == jaws_.lower_L.get() &&
+      &scheduled->upper_tree().mesh() == jaws_.upper_U.get()) {
+    return *scheduled;
   }
   if (!whole_finest_) {
     collision::OracleOptions base = SessionOracleBase(config_);
@@ -287,12 +288,16 @@ const MapFields& CaseSession::Maps() {
   return *maps_;
 }
 
+const collision::JawOracle* CaseSession::BuiltScheduledFinest() const {
+  const std::size_t last = ScheduleVoxels(config_).size() - 1;
+  return last < oracles_.size() ? oracles_[last].get() : nullptr;
+}
+
 const collision::NarrowBandSdf* CaseSession::WholeLowerField() const {
   // Built oracles only (building one for this would cost more than the map field), the finest
   // first: it is never released.
-  const std::size_t last = ScheduleVoxels(config_).size() - 1;
-  for (const collision::JawOracle* o :
-       {whole_finest_.get(), last < oracles_.size() ? oracles_[last].get() : nullptr}) {
+  const collision::JawOracle* whole = whole_finest_.get();
+  for (const collision::JawOracle* o : {whole, BuiltScheduledFinest()}) {
     if (o != nullptr && &o->lower_tree().mesh() == jaws_.lower_L.get()) return &o->lower_sdf();
   }
   return nullptr;

@@ -116,6 +116,8 @@ class CaseSession {
   std::vector<std::unique_ptr<collision::JawOracle>> oracles_;
   planner::OracleSchedule stages_;
   const collision::JawOracle& Oracle(std::size_t index);
+  /// The schedule's finest oracle when built (never released), else null.
+  const collision::JawOracle* BuiltScheduledFinest() const;
   std::unique_ptr<MapFields> maps_;  ///< may point into the finest oracle (never released)
   /// The lower field of a built oracle of the whole lower jaw at the finest voxel size, or null.
   const collision::NarrowBandSdf* WholeLowerField() const;

@@ -12,6 +12,8 @@
 #include <limits>
 #include <string>
 
+#include "oracle_trees.h"
+
 namespace occlude::collision {
 namespace {
 
@@ -139,12 +141,10 @@ MemoryEstimate EstimateNarrowBandSdfMemory(const io::TriangleMesh& mesh, double 
 
 MemoryEstimate EstimateOracleMemory(const io::TriangleMesh& lower_L,
                                     const io::TriangleMesh& upper_U, const OracleOptions& options) {
-  SphereTreeOptions tree;
-  tree.voxelize.voxel_size_mm = options.voxel_size_mm;
-  tree.build_explicit = options.tree_queries;
-  MemoryEstimate total = EstimateSphereTreeMemory(lower_L, tree);
-  tree.build_distance_bound = options.tree_queries;
-  total += EstimateSphereTreeMemory(upper_U, tree);
+  MemoryEstimate total = EstimateSphereTreeMemory(
+      lower_L, detail::OracleTreeOptions(options, detail::OracleJaw::kLower, 1));
+  total += EstimateSphereTreeMemory(
+      upper_U, detail::OracleTreeOptions(options, detail::OracleJaw::kUpper, 1));
   // The field reuses the lower tree's grid, so its lists are not a new transient.
   MemoryEstimate field =
       EstimateNarrowBandSdfMemory(lower_L, options.voxel_size_mm, options.sdf_dilation_voxels);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "occlude/collision/oracle.h"
+#include "oracle_trees.h"
 #include "parallel.h"
 
 namespace occlude::collision {
@@ -56,11 +57,9 @@ JawOracle::JawOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
 }
 
 void JawOracle::BuildLowerSide(std::shared_ptr<const io::TriangleMesh> lower_L, int threads) {
-  SphereTreeOptions tree_options;
-  tree_options.voxelize.voxel_size_mm = options_.voxel_size_mm;
-  tree_options.build_explicit = options_.tree_queries;
-  tree_options.threads = threads;
-  lower_ = SphereTree::Build(lower_L, tree_options);  // its distance bound: PrepareCell, Reach
+  // Its distance bound: PrepareCell, Reach.
+  lower_ = SphereTree::Build(
+      lower_L, detail::OracleTreeOptions(options_, detail::OracleJaw::kLower, threads));
   NarrowBandOptions sdf_options;
   sdf_options.dilation_voxels = options_.sdf_dilation_voxels;
   sdf_options.threads = threads;

@@ -9,6 +9,7 @@
 #include "occlude/assert.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/oracle.h"
+#include "oracle_trees.h"
 #include "parallel.h"
 #include "voxelize_detail.h"
 
@@ -199,12 +200,8 @@ float Radius(const std::vector<Eigen::Vector4f>& offsets, std::size_t first, std
 }  // namespace
 
 void JawOracle::BuildUpperSide(std::shared_ptr<const io::TriangleMesh> upper_U, int threads) {
-  SphereTreeOptions tree_options;
-  tree_options.voxelize.voxel_size_mm = options_.voxel_size_mm;
-  tree_options.build_explicit = options_.tree_queries;
-  tree_options.build_distance_bound = options_.tree_queries;
-  tree_options.threads = threads;
-  upper_ = SphereTree::Build(std::move(upper_U), tree_options);
+  upper_ = SphereTree::Build(
+      std::move(upper_U), detail::OracleTreeOptions(options_, detail::OracleJaw::kUpper, threads));
   const io::TriangleMesh& up = upper_.mesh();
   PlaceSamples(up, threads);
   BuildVoxelSamples();

@@ -74,6 +74,7 @@ class CornerCandidates {
  private:
   static constexpr float kSlackMm = 1e-4f;  ///< float rounding of centres, radii and heights
   static constexpr float kFarMm = 1e18f;    ///< a padding centre: squared distances stay finite
+  static constexpr float kRelative = 1.0f + 1e-6f;  ///< float rounding of a distance bound
   /// Calls visit(g) for every group g whose bounding sphere comes within `bound` of p (read
   /// again after each call: visit may lower it).
   template <class Visit>
@@ -146,7 +147,6 @@ void CornerCandidates::Finish() {
 template <class Test>
 float CornerCandidates::ScanGroup(std::size_t g, float px, float py, float pz, float best,
                                   Test&& test) const {
-  constexpr float kRelative = 1.0f + 1e-6f;  // float rounding of the best distance
 #if defined(__SSE2__)
   const __m128 x = _mm_set1_ps(px), y = _mm_set1_ps(py), z = _mm_set1_ps(pz);
   const __m128 zero = _mm_setzero_ps(), slack = _mm_set1_ps(kSlackMm);
@@ -200,7 +200,6 @@ float CornerCandidates::ScanGroup(std::size_t g, float px, float py, float pz, f
 template <class Visit>
 void CornerCandidates::ForGroupsWithin(float px, float py, float pz, const float& bound,
                                        Visit&& visit) const {
-  constexpr float kRelative = 1.0f + 1e-6f;  // float rounding of the bound
 #if defined(__SSE2__)
   const __m128 x = _mm_set1_ps(px), y = _mm_set1_ps(py), z = _mm_set1_ps(pz);
   for (std::size_t g4 = 0; g4 < groups_; g4 += 4) {

@@ -35,7 +35,6 @@ LocalResult LastStageSolve(const SearchContext& c, const Vector6d& start) {
   LocalResult r = req.solver == SolverKind::kNloptLocal
                       ? NloptLocal(stage, c.sets[last], *c.problem, x, req.max_evaluations)
                       : CeresLocal(stage, c.sets[last], *c.problem, x, 6, req.max_evaluations);
-  if (req.polish) r.x = Polish(stage, c.sets[last], *c.problem, r.x, PolishSettings{}, &evals);
   r.evaluations += evals;
   return r;
 }
@@ -62,8 +61,6 @@ LocalResult StagedSolve(const SearchContext& c, const Vector6d& start, std::size
     }
     evals += stage_result.evaluations;
     x = stage_result.x;
-    if (req.polish && s == sch.size() - 1)
-      x = Polish(sch[s], c.sets[s], *c.problem, x, PolishSettings{}, &evals);
   }
   LocalResult r = stage_result;
   r.x = x;
@@ -80,6 +77,12 @@ LocalResult SafeChain(const SearchContext& c, const Vector6d& start, std::size_t
     const SolverKind solver = c.problem->request->solver;
     const bool staged = solver == SolverKind::kCoarseToFine || solver == SolverKind::kNloptGlobal;
     r = staged ? StagedSolve(c, start, first, stop) : LastStageSolve(c, start);
+    // The polish of a result whose chain ran the last stage (PlanRequest::polish).
+    const std::size_t last = c.schedule->size() - 1;
+    if (c.problem->request->polish && (!staged || (first <= last && stop >= last))) {
+      r.x = Polish((*c.schedule)[last], c.sets[last], *c.problem, r.x, PolishSettings{},
+                   &r.evaluations);
+    }
   } catch (const std::exception& e) {
     r.x = start;
     r.status = SolveStatus::kFailed;
