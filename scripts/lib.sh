@@ -11,7 +11,7 @@ OCCLUDE_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OCCLUDE_PACKAGES=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libnlopt-cxx-dev libceres-dev libassimp-dev
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev zlib1g-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libopenvdb-dev libboost-dev
   libjs-three

@@ -6,10 +6,11 @@
 #include <cstdio>
 #include <limits>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
+
+#include "base/png_writer.h"
 
 namespace occlude::app {
 namespace {
@@ -375,10 +376,7 @@ std::string RenderLineChartPng(const LineChart& chart) {
   }
   DrawTitles(img, chart, layout);
   DrawLegend(img, chart, layout);
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png))
-    throw std::runtime_error("chart '" + chart.title + "': PNG encoding failed");
-  return std::string(png.begin(), png.end());
+  return EncodePng(img.data, img.cols, img.rows, PngPixels::kBgr, img.step);
 }
 
 }  // namespace occlude::app

@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
+
+#include "base/png_writer.h"
 
 namespace occlude::app {
 namespace {
@@ -372,11 +373,8 @@ LandmarkImage RenderLandmarkMap(const JawPair& jaws, const Eigen::Isometry3d& X_
 }
 
 std::string EncodePng(const render::Image& image) {
-  cv::Mat bgr;
-  cv::cvtColor(ToMat(image), bgr, cv::COLOR_RGB2BGR);
-  std::vector<unsigned char> buf;
-  if (!cv::imencode(".png", bgr, buf)) throw std::runtime_error("PNG encoding failed");
-  return std::string(buf.begin(), buf.end());
+  return EncodePng(image.rgb.data(), image.width, image.height, PngPixels::kRgb,
+                   3 * static_cast<std::size_t>(image.width));
 }
 
 }  // namespace occlude::app
