@@ -1,129 +1,43 @@
-// The FCL peer (see fcl_peer.h): builds FCL 0.7 BVH models of a jaw pair once and answers
-// collide / all-contacts / distance queries for a pose X_LU of the upper jaw in the lower
-// jaw's frame L. Everything that touches FCL is inside OCCLUDE_HAVE_FCL; without it, a stub
-// whose Available() is false and whose other members throw.
+// The FCL peer (see fcl_peer.h): a front for the jaw pair's FCL models, which the peers' module
+// builds and queries (bench/peer_module.h, bench/peers/fcl_model.cpp), so that FCL is loaded
+// only when a peer is made.
 #include "bench/fcl_peer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#ifdef OCCLUDE_HAVE_FCL
-
-#include <algorithm>
-#include <chrono>
-#include <limits>
-#include <type_traits>
-#include <vector>
-
-// FCL's headers reach us as system headers (/usr/include, imported target), so our warning
-// set (-Werror) does not apply to them; no diagnostic pragmas are needed with FCL 0.7.
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/math/bv/OBB.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/collision_object.h>
-#include <fcl/narrowphase/distance.h>
+#include "bench/peer_module.h"
 
 namespace occlude::app {
-namespace {
-
-// Checks what FCL needs of a mesh; throws std::invalid_argument naming the jaw otherwise.
-void CheckMesh(const io::TriangleMesh& mesh, const char* which) {
-  const std::string prefix = std::string("FclPeer: ") + which + " jaw mesh ";
-  if (mesh.triangles.empty()) throw std::invalid_argument(prefix + "has no triangles");
-  const auto max_int = static_cast<std::size_t>(std::numeric_limits<int>::max());
-  if (mesh.vertices.size() > max_int || mesh.triangles.size() > max_int) {
-    throw std::invalid_argument(prefix + "is too large for FCL (int indices)");
-  }
-  const auto nv = static_cast<int>(mesh.vertices.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Eigen::Vector3i& tri = mesh.triangles[t];
-    if ((tri.array() < 0).any() || (tri.array() >= nv).any()) {
-      throw std::invalid_argument(prefix + "triangle " + std::to_string(t) +
-                                  " indexes a vertex outside 0.." + std::to_string(nv - 1));
-    }
-  }
-}
-
-// A BVH model of `mesh` (coordinates kept in the mesh's own frame, mm) with FCL's default
-// splitter and fitter for BV. The triangle order is the mesh's, so FCL's primitive ids are
-// our triangle indices.
-template <class BV>
-std::shared_ptr<fcl::BVHModel<BV>> BuildModel(const io::TriangleMesh& mesh, std::size_t* bytes) {
-  std::vector<fcl::Vector3d> points(mesh.vertices.begin(), mesh.vertices.end());
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
-                           static_cast<std::size_t>(t[2]));
-  }
-  auto model = std::make_shared<fcl::BVHModel<BV>>();
-  const int nt = static_cast<int>(triangles.size());
-  const int nv = static_cast<int>(points.size());
-  if (model->beginModel(nt, nv) != fcl::BVH_OK || model->addSubModel(points, triangles) != 0 ||
-      model->endModel() != fcl::BVH_OK) {
-    throw std::runtime_error("FclPeer: FCL failed to build a BVH model");
-  }
-  // Nodes, vertices, triangles and the primitive index array FCL keeps per triangle.
-  *bytes += static_cast<std::size_t>(model->getNumBVs()) * sizeof(fcl::BVNode<BV>) +
-            points.size() * sizeof(fcl::Vector3d) +
-            triangles.size() * (sizeof(fcl::Triangle) + sizeof(unsigned int));
-  return model;
-}
-
-}  // namespace
-
-// Both jaws as CollisionObjects at identity, built once. Queries never call setTransform:
-// they pass the objects' geometry with the lower transform (identity) and X_LU to FCL's
-// geometry+transform overloads of collide/distance, which is exactly what the
-// CollisionObject overloads do internally. So queries are const and share no mutable state
-// (safe from several threads). Measured on a-bite-3shape (68k upper vertices): this and a
-// mutable upper object with setTransform both add about 0.2 us per query; building a
-// CollisionObject per query adds 0.26-0.36 ms (its constructor rescans every vertex in
-// computeLocalAABB, and writes to the shared geometry), and a mutable member would need a lock.
-static_assert(std::is_same_v<fcl::Transform3d, Eigen::Isometry3d>,
-              "FCL's Transform3d is expected to be Eigen::Isometry3d");
 
 struct FclPeer::Impl {
   FclBv bv = FclBv::kOBBRSS;
-  double build_seconds = 0.0;
-  std::size_t bytes = 0;
-  std::unique_ptr<fcl::CollisionObjectd> lower;  // lower jaw, frame L, identity
-  std::unique_ptr<fcl::CollisionObjectd> upper;  // upper jaw, frame U, placed per query
-
-  std::size_t RunCollide(const Eigen::Isometry3d& X_LU, std::size_t max_contacts) const {
-    fcl::CollisionRequestd request(max_contacts, /*enable_contact=*/false);
-    fcl::CollisionResultd result;
-    fcl::collide(lower->collisionGeometry().get(), lower->getTransform(),
-                 upper->collisionGeometry().get(), X_LU, request, result);
-    return result.numContacts();
-  }
+  std::unique_ptr<peers::FclModel> model;
 };
 
-bool FclPeer::Available() { return true; }
+std::string FclPeer::Unavailable() {
+#ifdef OCCLUDE_HAVE_FCL
+  std::string why_not;
+  const peers::Module* module = peers::LoadModule(&why_not);
+  if (module == nullptr) return why_not;
+  if (module->make_fcl == nullptr) return "the peers' module was built without FCL";
+  return "";
+#else
+  return "occlude was built without FCL (apt-get install libfcl-dev, then configure again)";
+#endif
+}
+
+bool FclPeer::Available() { return Unavailable().empty(); }
 
 const char* FclBvName(FclBv bv) { return bv == FclBv::kOBB ? "OBB" : "OBBRSS"; }
 
-FclPeer::FclPeer(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U, FclBv bv)
-    : impl_(std::make_unique<Impl>()) {
-  CheckMesh(lower_L, "lower");
-  CheckMesh(upper_U, "upper");
+FclPeer::FclPeer(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U, FclBv bv) {
+  const std::string why_not = Unavailable();
+  if (!why_not.empty()) throw std::runtime_error(why_not);
+  impl_ = std::make_unique<Impl>();
   impl_->bv = bv;
-  const auto t0 = std::chrono::steady_clock::now();
-  std::shared_ptr<fcl::CollisionGeometryd> lower_geometry;
-  std::shared_ptr<fcl::CollisionGeometryd> upper_geometry;
-  if (bv == FclBv::kOBB) {
-    lower_geometry = BuildModel<fcl::OBBd>(lower_L, &impl_->bytes);
-    upper_geometry = BuildModel<fcl::OBBd>(upper_U, &impl_->bytes);
-  } else {
-    lower_geometry = BuildModel<fcl::OBBRSSd>(lower_L, &impl_->bytes);
-    upper_geometry = BuildModel<fcl::OBBRSSd>(upper_U, &impl_->bytes);
-  }
-  // The constructor computes each geometry's local AABB once (a pass over its vertices).
-  impl_->lower = std::make_unique<fcl::CollisionObjectd>(lower_geometry);
-  impl_->upper = std::make_unique<fcl::CollisionObjectd>(upper_geometry);
-  impl_->build_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  impl_->model = peers::LoadModule(nullptr)->make_fcl(lower_L, upper_U, bv);
 }
 
 FclPeer::~FclPeer() = default;
@@ -131,29 +45,20 @@ FclPeer::FclPeer(FclPeer&& other) noexcept = default;
 FclPeer& FclPeer::operator=(FclPeer&& other) noexcept = default;
 
 FclBv FclPeer::bv() const { return impl_->bv; }
-double FclPeer::build_seconds() const { return impl_->build_seconds; }
-std::size_t FclPeer::approx_bytes() const { return impl_->bytes; }
+double FclPeer::build_seconds() const { return impl_->model->build_seconds(); }
+std::size_t FclPeer::approx_bytes() const { return impl_->model->approx_bytes(); }
 
 bool FclPeer::Collide(const Eigen::Isometry3d& X_LU) const {
-  return impl_->RunCollide(X_LU, 1) > 0;
+  return impl_->model->CountPairs(X_LU, 1) > 0;
 }
 
 std::size_t FclPeer::CollideAll(const Eigen::Isometry3d& X_LU, std::size_t max_contacts) const {
-  return impl_->RunCollide(X_LU, std::max<std::size_t>(max_contacts, 1));
+  return impl_->model->CountPairs(X_LU, std::max<std::size_t>(max_contacts, 1));
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> FclPeer::IntersectingPairs(
     const Eigen::Isometry3d& X_LU, std::size_t max_contacts) const {
-  fcl::CollisionRequestd request(std::max<std::size_t>(max_contacts, 1), /*enable_contact=*/false);
-  fcl::CollisionResultd result;
-  fcl::collide(impl_->lower->collisionGeometry().get(), impl_->lower->getTransform(),
-               impl_->upper->collisionGeometry().get(), X_LU, request, result);
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (std::size_t i = 0; i < result.numContacts(); ++i) {
-    const fcl::Contactd& c = result.getContact(i);
-    pairs.emplace_back(static_cast<std::size_t>(c.b1), static_cast<std::size_t>(c.b2));
-  }
-  return pairs;
+  return impl_->model->IntersectingPairs(X_LU, std::max<std::size_t>(max_contacts, 1));
 }
 
 FclQueryResult FclPeer::Distance(const Eigen::Isometry3d& X_LU) const {
@@ -162,61 +67,7 @@ FclQueryResult FclPeer::Distance(const Eigen::Isometry3d& X_LU) const {
         "FclPeer::Distance: FCL 0.7 has no mesh-mesh distance for OBB models (build the peer "
         "with FclBv::kOBBRSS)");
   }
-  // enable_signed_distance stays false: for meshes FCL would only re-run collide to guess a
-  // depth; intersecting meshes simply report 0.
-  fcl::DistanceRequestd request(/*enable_nearest_points=*/true);
-  fcl::DistanceResultd result;
-  fcl::distance(impl_->lower->collisionGeometry().get(), impl_->lower->getTransform(),
-                impl_->upper->collisionGeometry().get(), X_LU, request, result);
-  FclQueryResult out;
-  out.distance_mm = result.min_distance;
-  out.collide = result.min_distance <= 0.0;
-  // FCL returns the nearest points in its world frame, which is L (the lower jaw is at
-  // identity).
-  out.p_L_on_lower = result.nearest_points[0];
-  out.p_L_on_upper = result.nearest_points[1];
-  return out;
+  return impl_->model->Distance(X_LU);
 }
 
 }  // namespace occlude::app
-
-#else  // !OCCLUDE_HAVE_FCL
-
-namespace occlude::app {
-namespace {
-[[noreturn]] void ThrowNoFcl() {
-  throw std::runtime_error("occlude was built without FCL (apt-get install libfcl-dev)");
-}
-}  // namespace
-
-struct FclPeer::Impl {};
-
-bool FclPeer::Available() { return false; }
-
-const char* FclBvName(FclBv bv) { return bv == FclBv::kOBB ? "OBB" : "OBBRSS"; }
-
-FclPeer::FclPeer(const io::TriangleMesh& /*lower_L*/, const io::TriangleMesh& /*upper_U*/,
-                 FclBv /*bv*/) {
-  ThrowNoFcl();
-}
-FclPeer::~FclPeer() = default;
-FclPeer::FclPeer(FclPeer&& other) noexcept = default;
-FclPeer& FclPeer::operator=(FclPeer&& other) noexcept = default;
-
-FclBv FclPeer::bv() const { ThrowNoFcl(); }
-double FclPeer::build_seconds() const { ThrowNoFcl(); }
-std::size_t FclPeer::approx_bytes() const { ThrowNoFcl(); }
-bool FclPeer::Collide(const Eigen::Isometry3d& /*X_LU*/) const { ThrowNoFcl(); }
-std::size_t FclPeer::CollideAll(const Eigen::Isometry3d& /*X_LU*/,
-                                std::size_t /*max_contacts*/) const {
-  ThrowNoFcl();
-}
-std::vector<std::pair<std::size_t, std::size_t>> FclPeer::IntersectingPairs(
-    const Eigen::Isometry3d& /*X_LU*/, std::size_t /*max_contacts*/) const {
-  ThrowNoFcl();
-}
-FclQueryResult FclPeer::Distance(const Eigen::Isometry3d& /*X_LU*/) const { ThrowNoFcl(); }
-
-}  // namespace occlude::app
-
-#endif  // OCCLUDE_HAVE_FCL

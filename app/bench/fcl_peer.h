@@ -1,9 +1,11 @@
 // The FCL peer: one jaw pair held as FCL 0.7 BVH models, so that `occlude bench` can time the
 // general-purpose library on exactly the same meshes and poses as our Implicit Sphere Tree.
 //
-// FCL stays behind this header (pimpl): nothing here includes an FCL header, and a build
-// without FCL (OCCLUDE_HAVE_FCL undefined) still compiles and links; Available() then returns
-// false and every other member throws std::runtime_error.
+// FCL stays behind this header (pimpl) and in the peers' module (bench/peer_module.h), which is
+// opened when the first peer is made: nothing here includes an FCL header, and `occlude` does
+// not load FCL unless it benchmarks against it. Without FCL (OCCLUDE_HAVE_FCL undefined) or
+// without the module, Available() returns false and the constructor throws std::runtime_error
+// saying why (Unavailable()).
 //
 // Frames and units: the lower jaw's mesh is given in its own frame L and stays at identity;
 // the upper jaw's mesh is given in its own frame U and every query places it by X_LU (the pose
@@ -14,6 +16,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -45,8 +48,11 @@ struct FclQueryResult {
 /// queried from several threads at once. A moved-from peer may only be destroyed or assigned to.
 class FclPeer {
  public:
-  /// True when occlude was built with FCL.
+  /// True when occlude was built with FCL and its peers' module opens (bench/peer_module.h).
   static bool Available();
+  /// Why no peer can be made (the missing package or module file and the fix); empty when one
+  /// can.
+  static std::string Unavailable();
 
   /// Builds both BVH models (meshes must be non-empty and consistent, else
   /// std::invalid_argument). lower_L: lower jaw in L; upper_U: upper jaw in U. Vertices and

@@ -3,9 +3,11 @@
 // lower jaw, sampled trilinearly through a value accessor at the oracle's own upper samples, so
 // that `occlude bench` can time it on exactly the same points and poses as the sub-voxel oracle.
 //
-// OpenVDB stays behind this header (pimpl): nothing here includes an OpenVDB header, and a
-// build without it (OCCLUDE_HAVE_OPENVDB undefined) still compiles and links; Available() then
-// returns false and every other member throws std::runtime_error.
+// OpenVDB stays behind this header (pimpl) and in the peers' module (bench/peer_module.h), which
+// is opened when the first peer is made: nothing here includes an OpenVDB header, and `occlude`
+// does not load OpenVDB unless it benchmarks against it. Without OpenVDB (OCCLUDE_HAVE_OPENVDB
+// undefined) or without the module, Available() returns false and the constructor throws
+// std::runtime_error saying why (Unavailable()).
 //
 // Frames and units: the lower jaw's mesh is given in its own frame L, which is the level set's
 // world frame (OpenVDB's linear transform of the voxel size, no offset: voxel (i, j, k) is
@@ -19,6 +21,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "occlude/io/triangle_mesh.h"
@@ -53,8 +56,11 @@ struct OpenVdbSampleResult {
 /// accessor), so one peer may be queried from several threads at once.
 class OpenVdbPeer {
  public:
-  /// True when occlude was built with OpenVDB.
+  /// True when occlude was built with OpenVDB and its peers' module opens (bench/peer_module.h).
   static bool Available();
+  /// Why no peer can be made (the missing package or module file and the fix); empty when one
+  /// can.
+  static std::string Unavailable();
 
   /// Builds the level set of lower_L at voxel_mm (> 0) with a narrow band of half_width_voxels
   /// (>= 1) on either side of the surface: |d| < half_width_voxels * voxel_mm is known, deeper

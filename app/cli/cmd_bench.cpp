@@ -208,11 +208,11 @@ void RunBenchCommand(const BenchArgs& args, bool voxels_given) {
   options.openvdb = !args.no_openvdb;
   options.log = &std::cerr;
   if (options.fcl && !FclPeer::Available()) {
-    std::cerr << "occlude: warning: built without FCL (libfcl-dev): the FCL rows are missing\n";
+    std::cerr << "occlude: warning: the FCL rows are missing: " << FclPeer::Unavailable() << "\n";
   }
   if (options.openvdb && !OpenVdbPeer::Available()) {
-    std::cerr << "occlude: warning: built without OpenVDB (libopenvdb-dev libboost-dev): the "
-                 "OpenVDB rows are missing\n";
+    std::cerr << "occlude: warning: the OpenVDB rows are missing: " << OpenVdbPeer::Unavailable()
+              << "\n";
   }
   const std::vector<BenchRow> rows = RunBench(bc, options);
   const std::string summary =

@@ -18,7 +18,7 @@ namespace occlude::app {
 namespace {
 
 #define OCCLUDE_REQUIRE_FCL() \
-  if (!FclPeer::Available()) GTEST_SKIP() << "occlude was built without FCL"
+  if (!FclPeer::Available()) GTEST_SKIP() << FclPeer::Unavailable()
 
 constexpr double kDistTolMm = 1e-6;
 constexpr FclBv kBoth[] = {FclBv::kOBB, FclBv::kOBBRSS};
@@ -32,6 +32,14 @@ Eigen::Isometry3d Translation(double x, double y, double z) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() = Eigen::Vector3d(x, y, z);
   return X;
+}
+
+// A build with the library has the peers' module beside its binaries: a missing or stale
+// module fails here instead of skipping every other test.
+TEST(FclPeerTest, AvailableInEveryBuildWithTheLibrary) {
+  if (!OCCLUDE_BUILT_WITH_FCL) GTEST_SKIP() << FclPeer::Unavailable();
+  EXPECT_TRUE(FclPeer::Available()) << FclPeer::Unavailable();
+  EXPECT_EQ(FclPeer::Unavailable(), "");
 }
 
 TEST(FclPeerTest, StubOrRealMatchesAvailability) {

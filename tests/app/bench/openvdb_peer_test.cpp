@@ -16,7 +16,7 @@ namespace occlude::app {
 namespace {
 
 #define OCCLUDE_REQUIRE_OPENVDB() \
-  if (!OpenVdbPeer::Available()) GTEST_SKIP() << "occlude was built without OpenVDB"
+  if (!OpenVdbPeer::Available()) GTEST_SKIP() << OpenVdbPeer::Unavailable()
 
 constexpr double kVoxelMm = 0.25;
 constexpr int kHalfWidth = 3;  // band +-0.75 mm
@@ -43,6 +43,14 @@ Eigen::Isometry3d AtHeight(double z) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation().z() = z;
   return X;
+}
+
+// A build with the library has the peers' module beside its binaries: a missing or stale
+// module fails here instead of skipping every other test.
+TEST(OpenVdbPeerTest, AvailableInEveryBuildWithTheLibrary) {
+  if (!OCCLUDE_BUILT_WITH_OPENVDB) GTEST_SKIP() << OpenVdbPeer::Unavailable();
+  EXPECT_TRUE(OpenVdbPeer::Available()) << OpenVdbPeer::Unavailable();
+  EXPECT_EQ(OpenVdbPeer::Unavailable(), "");
 }
 
 TEST(OpenVdbPeerTest, StubOrRealMatchesAvailability) {
