@@ -59,6 +59,36 @@ std::vector<std::int32_t> VertexParts(const TriangleMesh& mesh) {
   return part;
 }
 
+// Cluster ids of 64-bit cell keys in order of first appearance: an open-addressing table
+// (linear probing, at most half full) in place of std::unordered_map, whose node per key made
+// it most of the search's time.
+class CellIds {
+ public:
+  explicit CellIds(std::size_t max_keys) {
+    std::size_t size = 16;
+    while (size < 2 * max_keys) size *= 2;
+    keys_.assign(size, 0);
+    ids_.assign(size, -1);
+    mask_ = size - 1;
+  }
+  // The id of `key`, the next one (count, then counted) when it is new.
+  std::int32_t IdOf(std::uint64_t key, std::int32_t* count) {
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20U) & mask_;
+    while (ids_[slot] >= 0) {
+      if (keys_[slot] == key) return ids_[slot];
+      slot = (slot + 1) & mask_;
+    }
+    keys_[slot] = key;
+    ids_[slot] = (*count)++;
+    return ids_[slot];
+  }
+
+ private:
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::int32_t> ids_;
+  std::size_t mask_ = 0;
+};
+
 struct Clusters {
   std::vector<std::int32_t> of_vertex;  ///< cluster id per vertex, -1 when unused
   std::int32_t count = 0;
@@ -77,8 +107,7 @@ class Clusterer {
     const bool packable = dims.prod() * nparts < 9e18;  // the key below fits 64 bits
     Clusters out;
     out.of_vertex.assign(mesh_.num_vertices(), -1);
-    std::unordered_map<std::uint64_t, std::int32_t> ids;
-    ids.reserve(mesh_.num_vertices());
+    CellIds ids(mesh_.num_vertices());
     for (std::size_t v = 0; v < mesh_.num_vertices(); ++v) {
       if (parts_[v] < 0) continue;
       const Eigen::Array3d cell =
@@ -87,9 +116,7 @@ class Clusterer {
       const std::uint64_t packed =
           packable ? static_cast<std::uint64_t>(key) + static_cast<std::uint64_t>(parts_[v])
                    : static_cast<std::uint64_t>(v);  // too fine to key: never fits a budget
-      const auto [it, fresh] = ids.emplace(packed, out.count);
-      if (fresh) ++out.count;
-      out.of_vertex[v] = it->second;
+      out.of_vertex[v] = ids.IdOf(packed, &out.count);
     }
     return out;
   }
