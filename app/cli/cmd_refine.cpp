@@ -18,6 +18,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -372,6 +373,8 @@ void RunRefine(const RefineArgs& args) {
   std::unique_ptr<RefineLivePage> live;  // first: a refused --bind or a busy port fails at once
   if (!args.serve.empty()) live = std::make_unique<RefineLivePage>(args.bind, args.serve.front());
   auto session = std::make_unique<CaseSession>(config, args.memory_budget_mb);
+  session->Prefetch();  // the arch analysis and a map field, while the oracle loads and the pose
+                        // settles
   Eigen::Isometry3d base = session->ConfigStartPose();
   std::string source = "the config's [start] pose";
   const std::filesystem::path last = out / "pose.json";
@@ -383,8 +386,12 @@ void RunRefine(const RefineArgs& args) {
     Watch(args, std::move(session), base, source, live.get());
     return;
   }
+  // The 3D view's meshes too are decimated while the pose settles.
+  std::future<DisplayJaws> display = std::async(
+      std::launch::async, [jaws = session->jaws()] { return DecimateJawsForViewer(jaws); });
   RefineOutcome r = Refine(*session, base);
-  WriteRefinement(*session, r, base, source, out);
+  const DisplayJaws decimated = display.get();
+  WriteRefinement(*session, r, base, source, out, &decimated);
 }
 
 }  // namespace

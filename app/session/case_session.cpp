@@ -283,7 +283,7 @@ const MapFields& CaseSession::Maps() {
     maps_ = std::make_unique<MapFields>();
     maps_->shared_lower = WholeLowerField();
     if (maps_->shared_lower == nullptr) maps_->own_lower = MapField(jaws_.lower_L);
-    maps_->own_upper = MapField(jaws_.upper_U);
+    maps_->own_upper = upper_map_.valid() ? upper_map_.get() : MapField(jaws_.upper_U);
   }
   return *maps_;
 }
@@ -334,9 +334,22 @@ void CaseSession::UpdateSettings(const CaseConfig& other) {
   analysis_.reset();
 }
 
+void CaseSession::Prefetch() {
+  // The threads hold the meshes (shared): the session may move while they run.
+  if (!detected_ && !detecting_.valid()) {
+    detecting_ = std::async(std::launch::async, [jaws = jaws_] { return AnalyzeCase(jaws); });
+  }
+  if (!maps_ && !upper_map_.valid()) {
+    upper_map_ =
+        std::async(std::launch::async, [upper = jaws_.upper_U] { return MapField(upper); });
+  }
+}
+
 const CaseAnalysis& CaseSession::Analysis() {
   if (analysis_) return *analysis_;
-  if (!detected_) {
+  if (!detected_ && detecting_.valid()) {
+    detected_ = std::make_unique<CaseAnalysis>(detecting_.get());
+  } else if (!detected_) {
     StepClock clock;
     clock.Start("analysed both arches");
     detected_ = std::make_unique<CaseAnalysis>(AnalyzeCase(jaws_));

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <future>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -106,6 +107,11 @@ class CaseSession {
   /// UpdateSettings) with the config's given landmarks (landmarks_file, read when the session
   /// is made: a bad file throws UserError there), upper ones moved with the upper jaw.
   const CaseAnalysis& Analysis();
+  /// Starts what needs the meshes alone, the detection of Analysis() and the upper jaw's field
+  /// of Maps(), on threads of their own, so that they run while the caller loads oracles and
+  /// settles a pose; Analysis() and Maps() then wait for them. Does nothing for what is done or
+  /// under way.
+  void Prefetch();
 
  private:
   CaseConfig config_;
@@ -119,6 +125,7 @@ class CaseSession {
   /// The schedule's finest oracle when built (never released), else null.
   const collision::JawOracle* BuiltScheduledFinest() const;
   std::unique_ptr<MapFields> maps_;  ///< may point into the finest oracle (never released)
+  std::future<collision::NarrowBandSdf> upper_map_;  ///< Prefetch's, until Maps() takes it
   /// The lower field of a built oracle of the whole lower jaw at the finest voxel size, or null.
   const collision::NarrowBandSdf* WholeLowerField() const;
   // Region of interest (session_region.h): the whole-jaw finest oracle when asked for, and
@@ -137,6 +144,7 @@ class CaseSession {
   std::vector<io::Landmark> given_;
   Eigen::Isometry3d X_LU_ref_loaded_ = Eigen::Isometry3d::Identity();
   std::unique_ptr<CaseAnalysis> detected_, analysis_;
+  std::future<CaseAnalysis> detecting_;  ///< Prefetch's, until Analysis() takes it
   void ReadGiven();
 };
 

@@ -1,11 +1,12 @@
 // CaseSession's oracles on the synthetic pair (5,000 triangles per jaw): none holds the
 // structures only tree-pair queries read; ReleaseCoarseOracles frees the schedule but its
 // finest oracle, which stays the same object, and a later Schedule() builds stages that answer
-// as the first ones did.
+// as the first ones did; what Prefetch() starts equals what is made on demand.
 #include "session/case_session.h"
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <vector>
 
 #include "config/case_config.h"
@@ -49,6 +50,47 @@ TEST(CaseSessionTest, CoarseOraclesAreReleasedAndBuiltAgainAlike) {
     EXPECT_EQ(again[i].level, first[i].level) << "stage " << i;
     EXPECT_EQ(AnswersDigest(*again[i].oracle), digests[i]) << "stage " << i;
   }
+}
+
+// The same session's arch analysis and map fields, prefetched on threads of their own or made
+// when first asked for, answer alike; a session moved while its prefetch runs keeps it.
+TEST(CaseSessionTest, PrefetchedAnalysisAndMapsEqualThoseMadeOnDemand) {
+  CaseConfig config =
+      ParseCaseConfig("[synthetic]\ntriangles = 5000\nseed = 1\n", "synthetic.toml");
+  config.cache_enabled = false;
+  CaseSession on_demand(config);
+  auto moved = std::make_unique<CaseSession>(config);
+  moved->Prefetch();
+  moved->Prefetch();  // under way: nothing more
+  CaseSession prefetched = std::move(*moved);
+  moved.reset();
+  const Eigen::Isometry3d X_LU(Eigen::Translation3d(0.1, -0.05, 0.2));
+  const analysis::Relationships a = RelationshipsAt(on_demand.Analysis(), X_LU);
+  const analysis::Relationships b = RelationshipsAt(prefetched.Analysis(), X_LU);
+  ASSERT_TRUE(a.overjet.mm && a.overbite.mm && a.midline_deviation.mm && a.molar[0].offset.mm);
+  EXPECT_EQ(a.overjet.mm, b.overjet.mm);
+  EXPECT_EQ(a.overbite.mm, b.overbite.mm);
+  EXPECT_EQ(a.midline_deviation.mm, b.midline_deviation.mm);
+  EXPECT_EQ(a.molar[0].offset.mm, b.molar[0].offset.mm);
+  ASSERT_EQ(on_demand.Analysis().upper_U.landmarks.size(),
+            prefetched.Analysis().upper_U.landmarks.size());
+  // Points about the jaws' surfaces (their vertices, moved a little).
+  const auto& jaws = prefetched.jaws();
+  int answered = 0;
+  for (std::size_t i = 0; i < jaws.upper_U->vertices.size(); i += 97) {
+    const Eigen::Vector3d p = jaws.upper_U->vertices[i] + Eigen::Vector3d(0.1, 0.2, -0.1);
+    const Eigen::Vector3d q = jaws.lower_L->vertices[i] + Eigen::Vector3d(0.1, 0.2, -0.1);
+    collision::SignedDistanceSample x, y;
+    ASSERT_EQ(on_demand.Maps().upper().Exact(p, 1.0, &x),
+              prefetched.Maps().upper().Exact(p, 1.0, &y));
+    EXPECT_EQ(x.distance, y.distance);
+    ASSERT_EQ(on_demand.Maps().lower().Exact(q, 1.0, &x),
+              prefetched.Maps().lower().Exact(q, 1.0, &y));
+    EXPECT_EQ(x.distance, y.distance);
+    ++answered;
+  }
+  EXPECT_GT(answered, 20);
+  prefetched.Prefetch();  // done: nothing to start
 }
 
 }  // namespace
