@@ -148,22 +148,42 @@ ArchCurve::Projection ArchCurve::Project(const Eigen::Vector2d& p) const {
   const auto k0 = static_cast<long>(it - angle.begin());
   const long n = static_cast<long>(q.size());
   const long window = static_cast<long>(std::ceil(12.0 / step));
-  double best = std::numeric_limits<double>::infinity();
-  Projection out;
-  for (long k = std::max(0L, k0 - window); k < std::min(n - 1, k0 + window); ++k) {
-    const Eigen::Vector2d d = q[static_cast<std::size_t>(k + 1)] - q[static_cast<std::size_t>(k)];
-    double f = (p - q[static_cast<std::size_t>(k)]).dot(d) / d.squaredNorm();
+  const long first = std::max(0L, k0 - window), end = std::min(n - 1, k0 + window);
+  if (first >= end) return {};
+  // The nearest segment of the window (the lowest k among equals), searched outward from the
+  // angle's: an inner segment (a chord of at most `step`) whose middle lies farther than the
+  // best distance plus half a step (and a margin far beyond rounding) cannot be nearer, and is
+  // passed over without its foot. The two end segments extend past the ends: never passed over.
+  double best = std::numeric_limits<double>::infinity(), reach = best;
+  long best_k = -1;
+  double best_f = 0.0;
+  const auto visit = [&](long k) {
+    const Eigen::Vector2d& qk = q[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d& qn = q[static_cast<std::size_t>(k + 1)];
+    if (k > 0 && k < n - 2 && (p - 0.5 * (qk + qn)).squaredNorm() > reach) return;
+    const Eigen::Vector2d d = qn - qk;
+    double f = (p - qk).dot(d) / d.squaredNorm();
     if (k > 0) f = std::max(f, 0.0);
     if (k < n - 2) f = std::min(f, 1.0);
-    const Eigen::Vector2d foot = q[static_cast<std::size_t>(k)] + f * d;
-    const double dist = (p - foot).squaredNorm();
-    if (dist < best) {
+    const double dist = (p - (qk + f * d)).squaredNorm();
+    if (dist < best || (dist == best && k < best_k)) {
       best = dist;
-      out.s = (static_cast<double>(k) + f) * step;
-      const Eigen::Vector2d normal(-d.y(), d.x());
-      out.t = (p - foot).dot(normal.normalized());
+      best_k = k;
+      best_f = f;
+      const double r = std::sqrt(best) + 0.5 * step + 1e-6;
+      reach = r * r;
     }
-  }
+  };
+  const long start = std::clamp(k0, first, end - 1);
+  for (long k = start; k < end; ++k) visit(k);
+  for (long k = start - 1; k >= first; --k) visit(k);
+  const Eigen::Vector2d d =
+      q[static_cast<std::size_t>(best_k + 1)] - q[static_cast<std::size_t>(best_k)];
+  const Eigen::Vector2d foot = q[static_cast<std::size_t>(best_k)] + best_f * d;
+  Projection out;
+  out.s = (static_cast<double>(best_k) + best_f) * step;
+  const Eigen::Vector2d normal(-d.y(), d.x());
+  out.t = (p - foot).dot(normal.normalized());
   return out;
 }
 

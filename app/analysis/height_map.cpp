@@ -3,6 +3,7 @@
 #include "height_map.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace occlude::analysis {
@@ -21,8 +22,33 @@ void ScanTriangle(const Eigen::Vector3d (&p)[3], std::int32_t t, HeightMap* map)
   const int i1 = std::min(map->nx - 1, cell_of(hi.x(), map->corner.x()));
   const int j0 = std::max(0, cell_of(lo.y(), map->corner.y()) + 1);
   const int j1 = std::min(map->ny - 1, cell_of(hi.y(), map->corner.y()));
+  // Along a row (fixed y) each barycentric weight is affine in x: l = (sx x + sy y + s0) / det,
+  // with (sx, sy, s0) below for l1 and l2 (l3 = 1 - l1 - l2). Each row scans the cells between
+  // where the three are >= -1e-9 (far beyond their rounding), widened by a cell each way; the
+  // exact test below decides, so the map is the same as from scanning the whole box.
+  const double w1[3] = {b.y() - c.y(), c.x() - b.x(), b.x() * c.y() - c.x() * b.y()};
+  const double w2[3] = {c.y() - a.y(), a.x() - c.x(), c.x() * a.y() - a.x() * c.y()};
+  const double w3[3] = {-(w1[0] + w2[0]), -(w1[1] + w2[1]), det - w1[2] - w2[2]};
   for (int j = j0; j <= j1; ++j) {
-    for (int i = i0; i <= i1; ++i) {
+    const double y = map->corner.y() + map->cell * (j + 0.5);
+    double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+    bool empty = false;
+    for (const double* w : {w1, w2, w3}) {
+      const double slope = w[0] / det, rest = (w[1] * y + w[2]) / det + 1e-9;
+      if (slope > 0) {
+        lo = std::max(lo, -rest / slope);
+      } else if (slope < 0) {
+        hi = std::min(hi, -rest / slope);
+      } else if (rest < 0) {
+        empty = true;
+      }
+    }
+    if (empty || lo > hi) continue;
+    const double first = std::ceil((lo - map->corner.x()) / map->cell - 0.5) - 1.0;
+    const double last = std::floor((hi - map->corner.x()) / map->cell - 0.5) + 1.0;
+    const int is = first > i0 ? static_cast<int>(std::min<double>(first, i1 + 1)) : i0;
+    const int ie = last < i1 ? static_cast<int>(std::max<double>(last, i0 - 1)) : i1;
+    for (int i = is; i <= ie; ++i) {
       const Eigen::Vector2d q = map->corner + map->cell * Eigen::Vector2d(i + 0.5, j + 0.5);
       const double l1 = ((b - q).x() * (c - q).y() - (c - q).x() * (b - q).y()) / det;
       const double l2 = ((c - q).x() * (a - q).y() - (a - q).x() * (c - q).y()) / det;
