@@ -90,28 +90,37 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
     }
   }
   std::unique_ptr<collision::JawOracle> built = build();
-  const std::string bytes = collision::SaveOracle(*built);
-  Save(bytes, file);
+  if (!Save(*built, file)) return built;
   // The run goes on with the saved form, so that a miss and a later hit are the same object
-  // (down to MemoryBytes(), which counts a built oracle's spare capacity).
+  // (down to MemoryBytes(), which counts a built oracle's spare capacity). The built one goes
+  // first: the file is read back a section at a time, so the two are never held at once.
   built.reset();
-  return std::make_unique<collision::JawOracle>(
-      collision::LoadOracle(bytes, std::move(lower_L), std::move(upper_U), options));
+  try {
+    return std::make_unique<collision::JawOracle>(
+        collision::LoadOracleFile(file, lower_L, upper_U, options));
+  } catch (const collision::OracleFileError& e) {
+    // Only if another run removed or replaced the entry meanwhile: build it again, uncached.
+    if (warnings_ != nullptr) {
+      *warnings_ << "occlude: cache entry not read back (" << e.what() << "); building it again\n";
+    }
+    return build();
+  }
 }
 
-void OracleCache::Save(const std::string& bytes, const fs::path& file) {
+bool OracleCache::Save(const collision::JawOracle& oracle, const fs::path& file) {
   std::error_code ec;
   fs::create_directories(folder_, ec);
   try {
     if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
-    io::WriteFileAtomically(file, bytes);
+    collision::SaveOracleFile(oracle, file);
   } catch (const std::exception& e) {
     Warn("oracle cache not written (" + std::string(e.what()) +
              "); going on without it (--cache DIR for another folder, --no-cache to skip it)",
          &warned_write_);
-    return;
+    return false;
   }
   EvictOracleCache(folder_, static_cast<std::uintmax_t>(max_mb_ * 1024.0 * 1024.0), file);
+  return true;
 }
 
 void EvictOracleCache(const fs::path& folder, std::uintmax_t max_bytes, const fs::path& keep) {

@@ -49,7 +49,8 @@ class OracleCache {
 
   /// The oracle of these meshes and options: loaded from the folder when an entry of its key
   /// passes every check, else `build()` (then saved, the folder evicted to its limit, and
-  /// the saved form returned: a miss answers and reports exactly as a later hit).
+  /// the saved form read back: a miss answers and reports exactly as a later hit; where the
+  /// entry cannot be written, the built oracle, which answers alike).
   std::unique_ptr<collision::JawOracle> Get(
       std::shared_ptr<const io::TriangleMesh> lower_L,
       std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
@@ -65,7 +66,8 @@ class OracleCache {
   std::ostream* warnings_;
   bool warned_write_ = false;
   OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
-  void Save(const std::string& bytes, const std::filesystem::path& file);
+  /// Writes the entry (then evicts to the limit); false, with a warning, when it cannot.
+  bool Save(const collision::JawOracle& oracle, const std::filesystem::path& file);
   void Warn(const std::string& line, bool* once);
 };
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <system_error>
 #include <utility>
 
@@ -182,28 +183,46 @@ std::uint64_t OracleCacheKey(const io::TriangleMesh& lower_L, const io::Triangle
   return h.Finish();
 }
 
-std::string SaveOracle(const JawOracle& oracle) {
-  // One buffer, sized up front: the sections hold about what the oracle holds in memory.
-  std::string out;
-  out.reserve(kHeaderBytes + oracle.MemoryBytes() + (std::size_t{1} << 20));
-  out.resize(kHeaderBytes);
+namespace {
+
+// Writes the oracle's sections in order, each (tag, reserved word, size, payload) built in one
+// string and handed to `put`; returns the header of the payload put (its size and checksum).
+Header PutSections(const JawOracle& oracle, const std::function<void(std::string_view)>& put) {
   const std::vector<std::string>& tags = detail::OracleCodec::Tags();
+  io::Hasher64 checksum;
+  std::uint64_t payload_bytes = 0;
+  std::string section;
   for (std::size_t i = 0; i < tags.size(); ++i) {
-    out += tags[i];
-    Append(std::uint32_t{0}, &out);
-    const std::size_t size_at = out.size();
-    Append(std::uint64_t{0}, &out);
-    detail::ByteWriter writer(&out);
+    section.clear();
+    section += tags[i];
+    Append(std::uint32_t{0}, &section);
+    const std::size_t size_at = section.size();
+    Append(std::uint64_t{0}, &section);
+    detail::ByteWriter writer(&section);
     detail::OracleCodec::PutSection(oracle, i, &writer);
-    const auto size = static_cast<std::uint64_t>(out.size() - size_at - sizeof(std::uint64_t));
-    std::memcpy(&out[size_at], &size, sizeof(size));
+    const auto size = static_cast<std::uint64_t>(section.size() - size_at - sizeof(std::uint64_t));
+    std::memcpy(&section[size_at], &size, sizeof(size));
+    checksum.Add(section.data(), section.size());
+    payload_bytes += section.size();
+    put(section);
   }
   Header h;
   h.sections = static_cast<std::uint32_t>(tags.size());
   h.key = OracleCacheKey(oracle.lower_tree().mesh(), oracle.upper_tree().mesh(),
                          detail::OracleCodec::Options(oracle));
-  h.payload_bytes = out.size() - kHeaderBytes;
-  h.payload_checksum = io::Hash64(out.data() + kHeaderBytes, out.size() - kHeaderBytes);
+  h.payload_bytes = payload_bytes;
+  h.payload_checksum = checksum.Finish();
+  return h;
+}
+
+}  // namespace
+
+std::string SaveOracle(const JawOracle& oracle) {
+  // One buffer, sized up front: the sections hold about what the oracle holds in memory.
+  std::string out;
+  out.reserve(kHeaderBytes + oracle.MemoryBytes() + (std::size_t{1} << 20));
+  out.resize(kHeaderBytes);
+  const Header h = PutSections(oracle, [&out](std::string_view section) { out += section; });
   const std::string header = EncodeHeader(h);
   std::memcpy(&out[0], header.data(), kHeaderBytes);
   return out;
@@ -252,7 +271,13 @@ std::vector<OracleFileSection> DescribeOracleBytes(std::string_view bytes) {
 }
 
 void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file) {
-  io::WriteFileAtomically(file, SaveOracle(oracle));
+  // Section by section, so that no more than the largest section is held besides the oracle;
+  // the header, known at the end, goes in front.
+  io::AtomicFileWriter out(file);
+  out.Append(std::string(kHeaderBytes, '\0'));
+  const Header h = PutSections(oracle, [&out](std::string_view section) { out.Append(section); });
+  out.Overwrite(0, EncodeHeader(h));
+  out.Commit();
 }
 
 namespace {

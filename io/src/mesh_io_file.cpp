@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <system_error>
 
 #include "mesh_io_internal.h"
@@ -27,6 +28,8 @@ fs::path FolderOf(const fs::path& file) {
   return file.has_parent_path() ? file.parent_path() : fs::path(".");
 }
 
+}  // namespace
+
 // A temporary file beside the target that is removed unless Commit() succeeds.
 class TempFile {
  public:
@@ -38,10 +41,22 @@ class TempFile {
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
 
-  void Write(const std::string& bytes) {
+  void Write(std::string_view bytes) {
     std::size_t done = 0;
     while (done < bytes.size()) {
       const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) FailWith("writing failed", errno);
+      done += static_cast<std::size_t>(n);
+    }
+  }
+
+  // Writes `bytes` at `offset` (within what was written), leaving the file offset at the end.
+  void WriteAt(std::size_t offset, std::string_view bytes) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::pwrite(fd_, bytes.data() + done, bytes.size() - done,
+                                 static_cast<off_t>(offset + done));
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) FailWith("writing failed", errno);
       done += static_cast<std::size_t>(n);
@@ -89,8 +104,6 @@ class TempFile {
   bool committed_ = false;
 };
 
-}  // namespace
-
 std::string Line(const fs::path& file, const std::string& what) {
   std::string line = file.string() + ": " + what;
   for (char& c : line) {
@@ -137,7 +150,12 @@ std::string ReadWholeFile(const fs::path& file) {
 
 namespace occlude::io {
 
-void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+struct AtomicFileWriter::Temp {
+  explicit Temp(const std::filesystem::path& target) : file(target) {}
+  detail::TempFile file;
+};
+
+AtomicFileWriter::AtomicFileWriter(const std::filesystem::path& file) {
   if (file.filename().empty()) detail::Fail(file, "cannot write: the path names no file");
   const std::filesystem::path folder = detail::FolderOf(file);
   std::error_code ec;
@@ -145,9 +163,29 @@ void WriteFileAtomically(const std::filesystem::path& file, const std::string& b
     detail::Fail(
         file, "cannot write: the folder '" + folder.string() + "' does not exist; create it first");
   }
-  detail::TempFile temp(file);
-  temp.Write(bytes);
-  temp.Commit();
+  temp_ = std::make_unique<Temp>(file);
+}
+
+AtomicFileWriter::~AtomicFileWriter() = default;
+
+void AtomicFileWriter::Append(std::string_view bytes) {
+  temp_->file.Write(bytes);
+  size_ += bytes.size();
+}
+
+void AtomicFileWriter::Overwrite(std::size_t offset, std::string_view bytes) {
+  if (offset + bytes.size() > size_) {
+    throw std::logic_error("AtomicFileWriter::Overwrite: past the bytes appended");
+  }
+  temp_->file.WriteAt(offset, bytes);
+}
+
+void AtomicFileWriter::Commit() { temp_->file.Commit(); }
+
+void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+  AtomicFileWriter writer(file);
+  writer.Append(bytes);
+  writer.Commit();
 }
 
 }  // namespace occlude::io

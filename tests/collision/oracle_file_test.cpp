@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <string>
@@ -117,6 +119,12 @@ TEST_F(OracleFileTest, LoadedOracleAnswersBitIdenticallyAtEveryLevel) {
 TEST_F(OracleFileTest, FileRoundTripLeavesNoTemporaryFileAndAMissingFileIsUnreadable) {
   const test::TempDir dir;
   SaveOracleFile(*built_, dir / "a.oracle");
+  {  // written section by section, the file holds exactly SaveOracle's bytes
+    std::ifstream in(dir / "a.oracle", std::ios::binary);
+    const std::string file_bytes((std::istreambuf_iterator<char>(in)),
+                                 std::istreambuf_iterator<char>());
+    EXPECT_TRUE(file_bytes == *bytes_) << file_bytes.size() << " vs " << bytes_->size();
+  }
   const JawOracle loaded = LoadOracleFile(dir / "a.oracle", lower_, upper_, options_);
   EXPECT_EQ(AnswersDigest(loaded), AnswersDigest(*built_));
   std::size_t files = 0;

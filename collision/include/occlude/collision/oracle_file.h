@@ -73,9 +73,10 @@ std::string SaveOracle(const JawOracle& oracle);
 JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
                      std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options);
 
-/// SaveOracle into `file`, atomically (a temporary file in the same folder, then renamed over
-/// it: a reader never sees a half-written file). Throws io::MeshError naming the file (folder
-/// missing or not writable, disk full).
+/// SaveOracle's bytes into `file`, atomically (a temporary file in the same folder, then renamed
+/// over it: a reader never sees a half-written file), written section by section: besides the
+/// oracle, no more than its largest section is held in memory. Throws io::MeshError naming the
+/// file (folder missing or not writable, disk full).
 void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file);
 
 /// LoadOracle of the file's bytes, read in one pass. Throws OracleFileError naming the file

@@ -2,8 +2,11 @@
 // processes running at the same time).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <string_view>
 
 namespace occlude::io {
 
@@ -12,5 +15,27 @@ namespace occlude::io {
 /// Throws MeshError (mesh_io.h) naming `file` (folder missing or not writable, disk full);
 /// never leaves the temporary file behind when it throws.
 void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes);
+
+/// The same, written in pieces (a file too large to hold in memory at once): Append() the
+/// bytes in order, Overwrite() some already appended (a header known at the end), Commit() to
+/// put the file in place. Destroyed uncommitted (or after a throw), it leaves nothing behind.
+/// Every member throws MeshError naming `file` as WriteFileAtomically does.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(const std::filesystem::path& file);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  void Append(std::string_view bytes);
+  /// Replaces bytes [offset, offset + bytes.size()) of those appended so far.
+  void Overwrite(std::size_t offset, std::string_view bytes);
+  void Commit();
+
+ private:
+  struct Temp;
+  std::unique_ptr<Temp> temp_;
+  std::size_t size_ = 0;
+};
 
 }  // namespace occlude::io

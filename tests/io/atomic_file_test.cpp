@@ -1,0 +1,82 @@
+// Atomic whole-file writes (io/atomic_file.h): the file appears only on Commit, whole; a writer
+// dropped uncommitted leaves no file and no temporary one; Overwrite patches appended bytes and
+// refuses bytes not yet appended; a missing folder is one error naming the file.
+#include "occlude/io/atomic_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+#include "occlude/io/mesh_io.h"
+#include "test_common.h"
+
+namespace occlude::io {
+namespace {
+
+std::string Read(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t FilesIn(const std::filesystem::path& dir) {
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
+TEST(AtomicFileWriterTest, TheFileAppearsWholeOnCommitWithItsHeaderPatched) {
+  const test::TempDir dir;
+  const std::filesystem::path file = dir / "entry.bin";
+  {
+    AtomicFileWriter out(file);
+    out.Append("HEAD");
+    out.Append("payload-1,");
+    out.Append("payload-2");
+    EXPECT_FALSE(std::filesystem::exists(file));  // only the temporary file so far
+    out.Overwrite(0, "head");
+    out.Overwrite(12, "PA");
+    out.Commit();
+  }
+  EXPECT_EQ(Read(file), "headpayload-PApayload-2");
+  EXPECT_EQ(FilesIn(dir.path()), 1u);
+}
+
+TEST(AtomicFileWriterTest, DroppedUncommittedItLeavesNothingAndTheOldFileStays) {
+  const test::TempDir dir;
+  const std::filesystem::path file = dir / "entry.bin";
+  WriteFileAtomically(file, "old");
+  {
+    AtomicFileWriter out(file);
+    out.Append("new bytes that never land");
+  }
+  EXPECT_EQ(Read(file), "old");
+  EXPECT_EQ(FilesIn(dir.path()), 1u);
+}
+
+TEST(AtomicFileWriterTest, OverwritePastTheAppendedBytesIsRefused) {
+  const test::TempDir dir;
+  AtomicFileWriter out(dir / "entry.bin");
+  out.Append("abc");
+  EXPECT_THROW(out.Overwrite(2, "xy"), std::logic_error);
+  EXPECT_NO_THROW(out.Overwrite(1, "xy"));
+}
+
+TEST(AtomicFileWriterTest, AMissingFolderIsOneErrorNamingTheFile) {
+  const test::TempDir dir;
+  try {
+    AtomicFileWriter out(dir / "no-such-folder" / "entry.bin");
+    ADD_FAILURE() << "no error";
+  } catch (const MeshError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("entry.bin"), std::string::npos) << what;
+    EXPECT_NE(what.find("does not exist"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace occlude::io
