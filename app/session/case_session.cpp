@@ -231,6 +231,11 @@ const planner::OracleSchedule& CaseSession::Schedule() {
       stages_.push_back(
           {&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
     }
+#if defined(__GLIBC__)
+    // The builds' transient grids were freed into glibc's arenas, which keep them for reuse;
+    // hand their pages back before the search (a cold run's peak memory).
+    malloc_trim(0);
+#endif
   }
   return stages_;
 }

@@ -26,28 +26,59 @@ struct IsBytes<Eigen::Matrix<S, R, C, O, MR, MC>>
     : std::bool_constant<std::is_arithmetic_v<S> && R != Eigen::Dynamic && C != Eigen::Dynamic &&
                          sizeof(Eigen::Matrix<S, R, C, O, MR, MC>) == sizeof(S) * R * C> {};
 
-/// Appends to a string it does not own (so that a whole file is written into one buffer).
+/// Where a ByteWriter's bytes go: a sink that takes them in order, in pieces of any size.
+using ByteSink = std::function<void(std::string_view)>;
+
+/// Writes values to a string it does not own (so that a whole file is written into one
+/// buffer), or to a ByteSink in pieces: small values gathered in a buffer of about
+/// kPieceBytes, large arrays handed over from their own memory, so that nothing of the size
+/// of what is written is held. Flush() hands over what the buffer holds (a sink's writer needs
+/// it once it is done).
 class ByteWriter {
  public:
-  explicit ByteWriter(std::string* bytes) : bytes_(*bytes) {}
+  static constexpr std::size_t kPieceBytes = std::size_t{1} << 20;
+
+  explicit ByteWriter(std::string* bytes) : bytes_(bytes) {}
+  explicit ByteWriter(const ByteSink* sink) : sink_(sink) {}
+
   template <typename T>
   void Value(const T& value) {
     static_assert(IsBytes<T>::value, "Value writes plain values");
-    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+    Put(reinterpret_cast<const char*>(&value), sizeof(T));
   }
   template <typename T>
   void Array(const std::vector<T>& values) {
     static_assert(IsBytes<T>::value, "Array writes arrays of plain values");
     Value(static_cast<std::uint64_t>(values.size()));
-    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    Put(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   /// One byte (0 or 1) per element.
   void Bools(const std::vector<bool>& values) {
     Array(std::vector<std::uint8_t>(values.begin(), values.end()));
   }
+  void Flush() {
+    if (sink_ != nullptr && !buffer_.empty()) {
+      (*sink_)(buffer_);
+      buffer_.clear();
+    }
+  }
 
  private:
-  std::string& bytes_;
+  void Put(const char* data, std::size_t size) {
+    if (sink_ == nullptr) {
+      bytes_->append(data, size);
+    } else if (size >= kPieceBytes) {
+      Flush();
+      (*sink_)(std::string_view(data, size));
+    } else {
+      buffer_.append(data, size);
+      if (buffer_.size() >= kPieceBytes) Flush();
+    }
+  }
+
+  std::string* bytes_ = nullptr;
+  const ByteSink* sink_ = nullptr;
+  std::string buffer_;
 };
 
 /// Reads what a ByteWriter wrote; any read past the end, or an array longer than the bytes

@@ -185,26 +185,31 @@ std::uint64_t OracleCacheKey(const io::TriangleMesh& lower_L, const io::Triangle
 
 namespace {
 
-// Writes the oracle's sections in order, each (tag, reserved word, size, payload) built in one
-// string and handed to `put`; returns the header of the payload put (its size and checksum).
-Header PutSections(const JawOracle& oracle, const std::function<void(std::string_view)>& put) {
+// Writes the oracle's sections in order, each its tag, a reserved word, its size and its
+// payload, handed to `put` in pieces (a section is measured first, then written: its size
+// leads it); returns the header of the payload put (its size and checksum).
+Header PutSections(const JawOracle& oracle, const detail::ByteSink& put) {
   const std::vector<std::string>& tags = detail::OracleCodec::Tags();
   io::Hasher64 checksum;
   std::uint64_t payload_bytes = 0;
-  std::string section;
+  const detail::ByteSink hashed = [&](std::string_view piece) {
+    checksum.Add(piece.data(), piece.size());
+    payload_bytes += piece.size();
+    put(piece);
+  };
   for (std::size_t i = 0; i < tags.size(); ++i) {
-    section.clear();
-    section += tags[i];
-    Append(std::uint32_t{0}, &section);
-    const std::size_t size_at = section.size();
-    Append(std::uint64_t{0}, &section);
-    detail::ByteWriter writer(&section);
+    std::uint64_t size = 0;
+    const detail::ByteSink count = [&size](std::string_view piece) { size += piece.size(); };
+    detail::ByteWriter measure(&count);
+    detail::OracleCodec::PutSection(oracle, i, &measure);
+    measure.Flush();
+    std::string head = tags[i];
+    Append(std::uint32_t{0}, &head);
+    Append(size, &head);
+    hashed(head);
+    detail::ByteWriter writer(&hashed);
     detail::OracleCodec::PutSection(oracle, i, &writer);
-    const auto size = static_cast<std::uint64_t>(section.size() - size_at - sizeof(std::uint64_t));
-    std::memcpy(&section[size_at], &size, sizeof(size));
-    checksum.Add(section.data(), section.size());
-    payload_bytes += section.size();
-    put(section);
+    writer.Flush();
   }
   Header h;
   h.sections = static_cast<std::uint32_t>(tags.size());
@@ -271,8 +276,8 @@ std::vector<OracleFileSection> DescribeOracleBytes(std::string_view bytes) {
 }
 
 void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file) {
-  // Section by section, so that no more than the largest section is held besides the oracle;
-  // the header, known at the end, goes in front.
+  // In pieces, so that little besides the oracle is held; the header, known at the end, goes in
+  // front.
   io::AtomicFileWriter out(file);
   out.Append(std::string(kHeaderBytes, '\0'));
   const Header h = PutSections(oracle, [&out](std::string_view section) { out.Append(section); });

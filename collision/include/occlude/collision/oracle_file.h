@@ -74,8 +74,8 @@ JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleM
                      std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options);
 
 /// SaveOracle's bytes into `file`, atomically (a temporary file in the same folder, then renamed
-/// over it: a reader never sees a half-written file), written section by section: besides the
-/// oracle, no more than its largest section is held in memory. Throws io::MeshError naming the
+/// over it: a reader never sees a half-written file), written in pieces of about a megabyte (an
+/// array is written from its own memory): besides the oracle, next to nothing is held. Throws io::MeshError naming the
 /// file (folder missing or not writable, disk full).
 void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file);
 
