@@ -24,24 +24,6 @@
 namespace occlude::app::peers {
 namespace {
 
-// Checks what FCL needs of a mesh; throws std::invalid_argument naming the jaw otherwise.
-void CheckMesh(const io::TriangleMesh& mesh, const char* which) {
-  const std::string prefix = std::string("FclPeer: ") + which + " jaw mesh ";
-  if (mesh.triangles.empty()) throw std::invalid_argument(prefix + "has no triangles");
-  const auto max_int = static_cast<std::size_t>(std::numeric_limits<int>::max());
-  if (mesh.vertices.size() > max_int || mesh.triangles.size() > max_int) {
-    throw std::invalid_argument(prefix + "is too large for FCL (int indices)");
-  }
-  const auto nv = static_cast<int>(mesh.vertices.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Eigen::Vector3i& tri = mesh.triangles[t];
-    if ((tri.array() < 0).any() || (tri.array() >= nv).any()) {
-      throw std::invalid_argument(prefix + "triangle " + std::to_string(t) +
-                                  " indexes a vertex outside 0.." + std::to_string(nv - 1));
-    }
-  }
-}
-
 // A BVH model of `mesh` (coordinates kept in the mesh's own frame, mm) with FCL's default
 // splitter and fitter for BV. The triangle order is the mesh's, so FCL's primitive ids are
 // our triangle indices.
@@ -82,8 +64,8 @@ static_assert(std::is_same_v<fcl::Transform3d, Eigen::Isometry3d>,
 class FclModelImpl final : public FclModel {
  public:
   FclModelImpl(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U, FclBv bv) {
-    CheckMesh(lower_L, "lower");
-    CheckMesh(upper_U, "upper");
+    CheckPeerMesh(lower_L, "FclPeer: lower jaw mesh ");
+    CheckPeerMesh(upper_U, "FclPeer: upper jaw mesh ");
     const auto t0 = std::chrono::steady_clock::now();
     std::shared_ptr<fcl::CollisionGeometryd> lower_geometry;
     std::shared_ptr<fcl::CollisionGeometryd> upper_geometry;

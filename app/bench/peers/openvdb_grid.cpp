@@ -21,19 +21,6 @@
 namespace occlude::app::peers {
 namespace {
 
-void CheckMesh(const io::TriangleMesh& mesh) {
-  const std::string prefix = "OpenVdbPeer: lower jaw mesh ";
-  if (mesh.triangles.empty()) throw std::invalid_argument(prefix + "has no triangles");
-  const auto nv = static_cast<int>(mesh.vertices.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Eigen::Vector3i& tri = mesh.triangles[t];
-    if ((tri.array() < 0).any() || (tri.array() >= nv).any()) {
-      throw std::invalid_argument(prefix + "triangle " + std::to_string(t) +
-                                  " indexes a vertex outside 0.." + std::to_string(nv - 1));
-    }
-  }
-}
-
 using Sampler =
     openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
 
@@ -41,7 +28,7 @@ class OpenVdbGridImpl final : public OpenVdbGrid {
  public:
   OpenVdbGridImpl(const io::TriangleMesh& lower_L, double voxel_mm, int half_width_voxels)
       : voxel_mm_(voxel_mm) {
-    CheckMesh(lower_L);
+    CheckPeerMesh(lower_L, "OpenVdbPeer: lower jaw mesh ");
     static std::once_flag initialized;  // OpenVDB's type registry (thread-safe, idempotent)
     std::call_once(initialized, [] { openvdb::initialize(); });
     const auto t0 = std::chrono::steady_clock::now();

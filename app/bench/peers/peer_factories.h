@@ -2,10 +2,16 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "bench/peer_module.h"
 
 namespace occlude::app::peers {
+
+/// Throws std::invalid_argument, `prefix` then what is wrong, for a mesh with no triangles, more
+/// vertices or triangles than an int counts, or a triangle indexing past the vertices
+/// (module.cpp).
+void CheckPeerMesh(const io::TriangleMesh& mesh, const std::string& prefix);
 
 /// Builds both jaws' BVH models (fcl_model.cpp); std::invalid_argument for an unusable mesh.
 std::unique_ptr<FclModel> MakeFclModel(const io::TriangleMesh& lower_L,
