@@ -136,10 +136,15 @@ ArchAnalysis AnalyzeArch(const io::TriangleMesh& jaw_J, io::Jaw which,
     return out;
   }
   std::vector<ToothView> views;
-  for (const ToothRegion& r : regions) {
-    views.push_back(ViewOf(jaw_J, *g, r, which));
-    out.teeth.push_back(Summarize(r, views.back()));
-    for (ArchLandmark& l : DetectToothLandmarks(views.back(), r.confidence)) {
+  std::vector<bool> next_is_neighbour;
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    views.push_back(ViewOf(jaw_J, *g, regions[k], which));
+    if (k > 0) next_is_neighbour.push_back(Neighbours(regions[k - 1].fdi, regions[k].fdi));
+  }
+  SetArchSlopes(*g, next_is_neighbour, &views);
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    out.teeth.push_back(Summarize(regions[k], views[k]));
+    for (ArchLandmark& l : DetectToothLandmarks(views[k], regions[k].confidence)) {
       out.landmarks.push_back(std::move(l));
     }
   }

@@ -458,7 +458,8 @@ double SideTop(const ToothView& view, const CrownBox& box, double sign) {
 // below that side's top (its own cusps or edge: molars tilt buccally in the upper jaw and
 // lingually in the lower, so one side's cusps stand 1-2 mm above the other's), in the crown's
 // middle along the arch there (between its cuts at that side's outline: a rotated crown's
-// middle moves along the arch from its lingual to its facial side).
+// middle moves along the arch from its lingual to its facial side), on the line across turned
+// square to the row of teeth (view.arch_slope), not to the curve.
 void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<ArchLandmark>* out) {
   const double depth =
       0.5 * kClinicalCrownShare * TypicalCrownHeightMm(view.jaw, io::ToothPosition(view.fdi));
@@ -466,9 +467,12 @@ void AddSurfacePoints(const ToothView& view, const CrownBox& box, std::vector<Ar
     const double sign = facial ? 1.0 : -1.0;
     const double target = SideTop(view, box, sign) - depth;
     const double v_side = box.v_mid + sign * 0.5 * box.width;
-    const double u0 = 0.5 * (EndU(view, v_side, true) + EndU(view, v_side, false));
+    const double u_side = 0.5 * (EndU(view, v_side, true) + EndU(view, v_side, false));
+    const double u0 = u_side - (v_side - box.v_mid) * view.arch_slope;
     Eigen::Vector3d p_J = Eigen::Vector3d::Zero();
-    if (OutermostOnLine(view, u0, target, sign, box.v_mid, &p_J)) {
+    // The turned line may pass the end of a short crown's side: then square to the curve.
+    if (OutermostOnLine(view, u0, target, sign, box.v_mid, &p_J) ||
+        OutermostOnLine(view, u_side, target, sign, box.v_mid, &p_J)) {
       out->push_back(Make(view, facial ? LandmarkType::kFacial : LandmarkType::kLingual, p_J, 0.5,
                           "outer surface of the crown's middle, half the clinical crown down"));
     }

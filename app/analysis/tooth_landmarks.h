@@ -7,10 +7,11 @@
 // as the middle of its ridge's highest cells, the central fossa as the middle of the lowest
 // points of the crown's middle (its floor), contact points at the crown's mesial and distal ends
 // (between two whole crowns: their closest points, PlaceContacts), and facial / lingual points
-// where the crown's surface triangles cross its middle on each side, halfway down the clinical
-// crown from that side's top. A cusp whose region holds no local maximum is left out, except
-// those a relationship rests on (buccal and mesiobuccal / middle buccal cusps): they take the
-// region's highest cell, confidence 0.4.
+// where the crown's surface triangles cross its middle on each side (on the line across square
+// to the row of teeth, ToothView::arch_slope), halfway down the clinical crown from that side's
+// top. A cusp whose region holds no local maximum is left out, except those a relationship rests
+// on (buccal and mesiobuccal / middle buccal cusps): they take the region's highest cell,
+// confidence 0.4.
 #pragma once
 
 #include <vector>

@@ -11,6 +11,28 @@
 namespace occlude::analysis {
 namespace {
 
+constexpr double kCentreBandMm = 3.0;  // a crown's centre: its cells this close to its top
+constexpr double kMinChordMm = 1.0;    // an arch direction from centres this far apart along u
+constexpr double kMaxArchSlope = 0.5;  // at most this turned from the curve (27 deg)
+
+// The middle of the crown's cells within kCentreBandMm of its top, in J (false when it has none).
+bool CrownCentre(const ToothView& view, Eigen::Vector3d* centre_J) {
+  const HeightMap& map = view.top;
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (map.Filled(c)) top = std::max(top, map.height[static_cast<std::size_t>(c)]);
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int c = 0; c < map.nx * map.ny; ++c) {
+    if (map.Filled(c) && map.height[static_cast<std::size_t>(c)] >= top - kCentreBandMm)
+      sum += map.Point_J(c), ++n;
+  }
+  if (n == 0) return false;
+  *centre_J = sum / n;
+  return true;
+}
+
 // A map over the bounding box of the cells `keep` of `map`, the others NaN.
 HeightMap Crop(const HeightMap& map, const std::vector<int>& keep) {
   HeightMap out;
@@ -127,6 +149,29 @@ ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g
   }
   AddTriangles(mesh, {}, index, &view);
   return view;
+}
+
+void SetArchSlopes(const ArchGeometry& g, const std::vector<bool>& next_is_neighbour,
+                   std::vector<ToothView>* views) {
+  const std::size_t n = views->size();
+  std::vector<Eigen::Vector3d> centre(n, Eigen::Vector3d::Zero());
+  std::vector<bool> has(n, false);
+  for (std::size_t k = 0; k < n; ++k) has[k] = CrownCentre((*views)[k], &centre[k]);
+  for (std::size_t k = 0; k < n; ++k) {
+    ToothView& view = (*views)[k];
+    const bool before =
+        k > 0 && k - 1 < next_is_neighbour.size() && next_is_neighbour[k - 1] && has[k - 1];
+    const bool after =
+        k + 1 < n && k < next_is_neighbour.size() && next_is_neighbour[k] && has[k + 1];
+    if (!has[k] || (!before && !after)) continue;
+    const Eigen::Vector3d a =
+        ToothCoordinates(g, view.s_mid, view.mesial_sign, before ? centre[k - 1] : centre[k]);
+    const Eigen::Vector3d b =
+        ToothCoordinates(g, view.s_mid, view.mesial_sign, after ? centre[k + 1] : centre[k]);
+    const Eigen::Vector2d d = (b - a).head<2>();
+    if (std::abs(d.x()) < kMinChordMm) continue;
+    view.arch_slope = std::clamp(d.y() / d.x(), -kMaxArchSlope, kMaxArchSlope);
+  }
 }
 
 ToothView ShellToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi, io::Jaw jaw,

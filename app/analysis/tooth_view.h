@@ -36,6 +36,9 @@ struct ToothView {
   /// Segmented teeth: the cuts on the patient's right and left (arc length as a function of v);
   /// empty for whole crowns, whose u is the arc length from s_mid.
   ToothCut right_cut, left_cut;
+  /// The direction of the row of teeth at this tooth, dv/du in its tooth coordinates: the line
+  /// through its neighbours' crowns (SetArchSlopes); 0 along the curve.
+  double arch_slope = 0.0;
 };
 
 /// +1 for the teeth of the patient's right (mesial is towards increasing arc length), else -1.
@@ -55,6 +58,16 @@ Eigen::Vector3d ToothCoordinates(const ArchGeometry& g, double s_mid, double mes
 ToothView SegmentedToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi,
                              io::Jaw jaw, const ToothCut& right, const ToothCut& left,
                              double half_width_mm, double depth_mm);
+
+/// Sets each view's arch_slope (views in arch order; `next_is_neighbour[k]` when views k and k + 1
+/// stand next to each other): the direction from the centre of the crown before it to that of
+/// the crown after it (its own centre for a missing neighbour; unchanged without either), a
+/// crown's centre the middle of its cells within 3 mm of its top, the slope at most 0.5. The arch
+/// curve is a smooth fit through the crown band: where the teeth's row runs turned from it (a
+/// narrow incisor segment, the premolars, the last molars), a line across a crown square to the
+/// curve is turned from the tooth's own facial-lingual line.
+void SetArchSlopes(const ArchGeometry& g, const std::vector<bool>& next_is_neighbour,
+                   std::vector<ToothView>* views);
 
 /// The view of a tooth given as its own triangles (a part or a shell).
 ToothView ShellToothView(const io::TriangleMesh& mesh, const ArchGeometry& g, int fdi, io::Jaw jaw,
