@@ -25,8 +25,10 @@ bool CrownCentre(const ToothView& view, Eigen::Vector3d* centre_J) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int n = 0;
   for (int c = 0; c < map.nx * map.ny; ++c) {
-    if (map.Filled(c) && map.height[static_cast<std::size_t>(c)] >= top - kCentreBandMm)
-      sum += map.Point_J(c), ++n;
+    if (map.Filled(c) && map.height[static_cast<std::size_t>(c)] >= top - kCentreBandMm) {
+      sum += map.Point_J(c);
+      ++n;
+    }
   }
   if (n == 0) return false;
   *centre_J = sum / n;
