@@ -75,8 +75,8 @@ JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleM
 
 /// SaveOracle's bytes into `file`, atomically (a temporary file in the same folder, then renamed
 /// over it: a reader never sees a half-written file), written in pieces of about a megabyte (an
-/// array is written from its own memory): besides the oracle, next to nothing is held. Throws io::MeshError naming the
-/// file (folder missing or not writable, disk full).
+/// array is written from its own memory): besides the oracle, next to nothing is held. Throws
+/// io::MeshError naming the file (folder missing or not writable, disk full).
 void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file);
 
 /// LoadOracle of the file's bytes, read in one pass. Throws OracleFileError naming the file
