@@ -31,21 +31,21 @@ void ScanTriangle(const Eigen::Vector3d (&p)[3], std::int32_t t, HeightMap* map)
   const double w3[3] = {-(w1[0] + w2[0]), -(w1[1] + w2[1]), det - w1[2] - w2[2]};
   for (int j = j0; j <= j1; ++j) {
     const double y = map->corner.y() + map->cell * (j + 0.5);
-    double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+    double from = -std::numeric_limits<double>::infinity(), to = -from;
     bool empty = false;
     for (const double* w : {w1, w2, w3}) {
       const double slope = w[0] / det, rest = (w[1] * y + w[2]) / det + 1e-9;
       if (slope > 0) {
-        lo = std::max(lo, -rest / slope);
+        from = std::max(from, -rest / slope);
       } else if (slope < 0) {
-        hi = std::min(hi, -rest / slope);
+        to = std::min(to, -rest / slope);
       } else if (rest < 0) {
         empty = true;
       }
     }
-    if (empty || lo > hi) continue;
-    const double first = std::ceil((lo - map->corner.x()) / map->cell - 0.5) - 1.0;
-    const double last = std::floor((hi - map->corner.x()) / map->cell - 0.5) + 1.0;
+    if (empty || from > to) continue;
+    const double first = std::ceil((from - map->corner.x()) / map->cell - 0.5) - 1.0;
+    const double last = std::floor((to - map->corner.x()) / map->cell - 0.5) + 1.0;
     const int is = first > i0 ? static_cast<int>(std::min<double>(first, i1 + 1)) : i0;
     const int ie = last < i1 ? static_cast<int>(std::max<double>(last, i0 - 1)) : i1;
     for (int i = is; i <= ie; ++i) {

@@ -183,14 +183,14 @@ TEST(ArchScanTest, ProjectEqualsTheNearestOfEverySegmentOfItsWindow) {
   EXPECT_GT(checked, 20000);
   // Points on the first segment's line past the end, nearer to it than to the branch above,
   // whose search starts on the half circle: the branch is met first.
-  for (double x = -3.5; x <= -0.5; x += 0.5) {
-    const Eigen::Vector2d p(x, 0.4);
+  for (double past = -3.5; past <= -0.5; past += 0.5) {
+    const Eigen::Vector2d p(past, 0.4);
     const ArchCurve hooked = HookedCurve(0.25, p, 20);
     const ArchCurve::Projection fast = hooked.Project(p), brute = BruteProject(hooked, p);
-    EXPECT_LT(brute.s, 0.0) << x;  // on the line past the end
-    EXPECT_NEAR(brute.t, 0.4, 1e-9) << x;
-    ASSERT_EQ(fast.s, brute.s) << x;
-    ASSERT_EQ(fast.t, brute.t) << x;
+    EXPECT_LT(brute.s, 0.0) << past;  // on the line past the end
+    EXPECT_NEAR(brute.t, 0.4, 1e-9) << past;
+    ASSERT_EQ(fast.s, brute.s) << past;
+    ASSERT_EQ(fast.t, brute.t) << past;
   }
 }
 
