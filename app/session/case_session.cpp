@@ -162,7 +162,11 @@ std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
   clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
   try {
     return cache_->Get(lower_L, upper_U, options, [&] {
-      return std::make_unique<collision::JawOracle>(lower_L, upper_U, options);
+      auto built = std::make_unique<collision::JawOracle>(lower_L, upper_U, options);
+#if defined(__GLIBC__)
+      malloc_trim(0);  // the build's freed grids, before the next build or the save
+#endif
+      return built;
     });
   } catch (const collision::VoxelizeError& e) {
     throw UserError(config_.file.string() + ": accuracy: " + e.what());
