@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace occlude::app {
@@ -30,31 +31,24 @@ void PutChunk(const char (&type)[5], const std::uint8_t* data, std::size_t size,
   PutU32(static_cast<std::uint32_t>(crc32(0L, crc_from, static_cast<uInt>(size + 4))), out);
 }
 
-int Channels(PngPixels pixels) {
-  switch (pixels) {
-    case PngPixels::kGrey:
-      return 1;
-    case PngPixels::kRgb:
-    case PngPixels::kBgr:
-      return 3;
-    case PngPixels::kRgba:
-      return 4;
-  }
-  return 3;
-}
+// Bytes a pixel and PNG colour type (greyscale 0, truecolour 2, truecolour with alpha 6) of
+// the written pixels.
+struct Layout {
+  int channels;
+  std::uint8_t colour_type;
+};
 
-// PNG colour type of the written pixels (greyscale 0, truecolour 2, truecolour with alpha 6).
-std::uint8_t ColourType(PngPixels pixels) {
+Layout LayoutOf(PngPixels pixels) {
   switch (pixels) {
     case PngPixels::kGrey:
-      return 0;
+      return {1, 0};
     case PngPixels::kRgb:
     case PngPixels::kBgr:
-      return 2;
+      return {3, 2};
     case PngPixels::kRgba:
-      return 6;
+      return {4, 6};
   }
-  return 2;
+  return {3, 2};
 }
 
 std::uint8_t Paeth(int a, int b, int c) {
@@ -136,7 +130,8 @@ std::vector<std::uint8_t> Deflate(const std::vector<std::uint8_t>& raw) {
 
 std::string EncodePng(const std::uint8_t* rows, int width, int height, PngPixels pixels,
                       std::size_t row_stride_bytes) {
-  const int bpp = Channels(pixels);
+  const Layout layout = LayoutOf(pixels);
+  const int bpp = layout.channels;
   if (rows == nullptr || width < 1 || height < 1 ||
       static_cast<std::size_t>(width) > std::numeric_limits<std::uint32_t>::max() / 4U ||
       row_stride_bytes < static_cast<std::size_t>(width) * static_cast<std::size_t>(bpp)) {
@@ -159,20 +154,15 @@ std::string EncodePng(const std::uint8_t* rows, int width, int height, PngPixels
     }
     row.swap(above);
   }
-  std::array<std::uint8_t, 13> header{};
-  for (int k = 0; k < 4; ++k) {
-    const auto shift = static_cast<unsigned>(24 - 8 * k);
-    header[static_cast<std::size_t>(k)] =
-        static_cast<std::uint8_t>((static_cast<std::uint32_t>(width) >> shift) & 0xffU);
-    header[static_cast<std::size_t>(4 + k)] =
-        static_cast<std::uint8_t>((static_cast<std::uint32_t>(height) >> shift) & 0xffU);
-  }
-  header[8] = 8;  // bits a channel
-  header[9] = ColourType(pixels);
-  // header[10..12]: deflate, adaptive filtering, no interlace (all 0)
+  std::string header;
+  PutU32(static_cast<std::uint32_t>(width), &header);
+  PutU32(static_cast<std::uint32_t>(height), &header);
+  header += static_cast<char>(8);  // bits a channel
+  header += static_cast<char>(layout.colour_type);
+  header.append(3, '\0');  // deflate, adaptive filtering, no interlace
   const std::vector<std::uint8_t> idat = Deflate(raw);
   std::string png(kSignature.begin(), kSignature.end());
-  PutChunk("IHDR", header.data(), header.size(), &png);
+  PutChunk("IHDR", reinterpret_cast<const std::uint8_t*>(header.data()), header.size(), &png);
   PutChunk("IDAT", idat.data(), idat.size(), &png);
   PutChunk("IEND", nullptr, 0, &png);
   return png;

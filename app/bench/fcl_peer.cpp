@@ -18,13 +18,9 @@ struct FclPeer::Impl {
 
 std::string FclPeer::Unavailable() {
 #ifdef OCCLUDE_HAVE_FCL
-  std::string why_not;
-  const peers::Module* module = peers::LoadModule(&why_not);
-  if (module == nullptr) return why_not;
-  if (module->make_fcl == nullptr) return "the peers' module was built without FCL";
-  return "";
+  return peers::WhyUnavailable(peers::Peer::kFcl, true);
 #else
-  return "occlude was built without FCL (apt-get install libfcl-dev, then configure again)";
+  return peers::WhyUnavailable(peers::Peer::kFcl, false);
 #endif
 }
 

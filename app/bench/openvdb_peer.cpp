@@ -19,14 +19,9 @@ struct OpenVdbPeer::Impl {
 
 std::string OpenVdbPeer::Unavailable() {
 #ifdef OCCLUDE_HAVE_OPENVDB
-  std::string why_not;
-  const peers::Module* module = peers::LoadModule(&why_not);
-  if (module == nullptr) return why_not;
-  if (module->make_openvdb == nullptr) return "the peers' module was built without OpenVDB";
-  return "";
+  return peers::WhyUnavailable(peers::Peer::kOpenVdb, true);
 #else
-  return "occlude was built without OpenVDB (apt-get install libopenvdb-dev libboost-dev, then "
-         "configure again)";
+  return peers::WhyUnavailable(peers::Peer::kOpenVdb, false);
 #endif
 }
 

@@ -4,7 +4,6 @@
 #include <dlfcn.h>
 
 #include <filesystem>
-#include <mutex>
 #include <system_error>
 
 namespace occlude::app::peers {
@@ -44,6 +43,20 @@ const Module* LoadModule(std::string* why_not) {
   static const Loaded loaded = Open();
   if (why_not != nullptr) *why_not = loaded.why_not;
   return loaded.module;
+}
+
+std::string WhyUnavailable(Peer peer, bool built_with) {
+  const bool fcl = peer == Peer::kFcl;
+  const std::string library = fcl ? "FCL" : "OpenVDB";
+  if (!built_with) {
+    return "occlude was built without " + library + " (apt-get install " +
+           (fcl ? "libfcl-dev" : "libopenvdb-dev libboost-dev") + ", then configure again)";
+  }
+  std::string why_not;
+  const Module* module = LoadModule(&why_not);
+  if (module == nullptr) return why_not;
+  const bool has = fcl ? module->make_fcl != nullptr : module->make_openvdb != nullptr;
+  return has ? "" : "the peers' module was built without " + library;
 }
 
 }  // namespace occlude::app::peers

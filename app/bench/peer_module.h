@@ -68,6 +68,13 @@ inline constexpr const char* kModuleFile = "libocclude_peers.so";
 /// *why_not (the file and the fix).
 const Module* LoadModule(std::string* why_not);
 
+/// The peers the module may hold.
+enum class Peer { kFcl, kOpenVdb };
+
+/// Why no `peer` can be made: the build had not its library (`built_with` false: the packages
+/// to install), the module does not open, or it was built without it; empty when one can.
+std::string WhyUnavailable(Peer peer, bool built_with);
+
 }  // namespace occlude::app::peers
 
 /// The module's one exported symbol.

@@ -28,6 +28,15 @@ constexpr double kMapVoxelMm = 0.4;
 // A region keeping at least this share of a jaw's triangles is not worth a cut (session_region.h).
 constexpr double kWholeAboveShare = 0.95;
 
+// glibc keeps freed blocks in its arenas for reuse (its mmap threshold grows past the oracles'
+// arrays once large blocks were freed): hands the freed pages back to the system, so that what
+// a build or a released oracle freed does not stay resident.
+void ReturnFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
 collision::NarrowBandSdf MapField(std::shared_ptr<const io::TriangleMesh> mesh) {
   collision::VoxelizeOptions options;
   options.voxel_size_mm = kMapVoxelMm;
@@ -163,9 +172,7 @@ std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
   try {
     return cache_->Get(lower_L, upper_U, options, [&] {
       auto built = std::make_unique<collision::JawOracle>(lower_L, upper_U, options);
-#if defined(__GLIBC__)
-      malloc_trim(0);  // the build's freed grids, before the next build or the save
-#endif
+      ReturnFreedMemory();  // the build's transient grids, before the next build or the save
       return built;
     });
   } catch (const collision::VoxelizeError& e) {
@@ -235,11 +242,8 @@ const planner::OracleSchedule& CaseSession::Schedule() {
       stages_.push_back(
           {&Oracle(i), i + 1 == n ? config_.OracleLevel() : collision::AccuracyLevel::kSubVoxel});
     }
-#if defined(__GLIBC__)
-    // The builds' transient grids were freed into glibc's arenas, which keep them for reuse;
-    // hand their pages back before the search (a cold run's peak memory).
-    malloc_trim(0);
-#endif
+    // What the last save and the loads freed, before the search (a cold run's peak memory).
+    ReturnFreedMemory();
   }
   return stages_;
 }
@@ -247,11 +251,7 @@ const planner::OracleSchedule& CaseSession::Schedule() {
 void CaseSession::ReleaseCoarseOracles() {
   stages_.clear();
   for (std::size_t i = 0; i + 1 < oracles_.size(); ++i) oracles_[i].reset();
-#if defined(__GLIBC__)
-  // glibc keeps freed blocks of its arenas for reuse (its mmap threshold grows past the
-  // oracles' arrays once large blocks were freed); hand the freed pages back.
-  malloc_trim(0);
-#endif
+  ReturnFreedMemory();
 }
 
 const collision::JawOracle& CaseSession::FinestOracle() {

@@ -29,17 +29,15 @@ struct IsBytes<Eigen::Matrix<S, R, C, O, MR, MC>>
 /// Where a ByteWriter's bytes go: a sink that takes them in order, in pieces of any size.
 using ByteSink = std::function<void(std::string_view)>;
 
-/// Writes values to a string it does not own (so that a whole file is written into one
-/// buffer), or to a ByteSink in pieces: small values gathered in a buffer of about
-/// kPieceBytes, large arrays handed over from their own memory, so that nothing of the size
-/// of what is written is held. Flush() hands over what the buffer holds (a sink's writer needs
+/// Writes values to a ByteSink in pieces: small values gathered in a buffer of about
+/// kPieceBytes, large arrays handed over from their own memory, so that nothing of the size of
+/// what is written is held. Flush() hands over what the buffer holds (a sink's writer needs
 /// it once it is done).
 class ByteWriter {
  public:
   static constexpr std::size_t kPieceBytes = std::size_t{1} << 20;
 
-  explicit ByteWriter(std::string* bytes) : bytes_(bytes) {}
-  explicit ByteWriter(const ByteSink* sink) : sink_(sink) {}
+  explicit ByteWriter(const ByteSink* sink) : sink_(*sink) {}
 
   template <typename T>
   void Value(const T& value) {
@@ -57,27 +55,23 @@ class ByteWriter {
     Array(std::vector<std::uint8_t>(values.begin(), values.end()));
   }
   void Flush() {
-    if (sink_ != nullptr && !buffer_.empty()) {
-      (*sink_)(buffer_);
-      buffer_.clear();
-    }
+    if (buffer_.empty()) return;
+    sink_(buffer_);
+    buffer_.clear();
   }
 
  private:
   void Put(const char* data, std::size_t size) {
-    if (sink_ == nullptr) {
-      bytes_->append(data, size);
-    } else if (size >= kPieceBytes) {
+    if (size >= kPieceBytes) {
       Flush();
-      (*sink_)(std::string_view(data, size));
+      sink_(std::string_view(data, size));
     } else {
       buffer_.append(data, size);
       if (buffer_.size() >= kPieceBytes) Flush();
     }
   }
 
-  std::string* bytes_ = nullptr;
-  const ByteSink* sink_ = nullptr;
+  const ByteSink& sink_;
   std::string buffer_;
 };
 

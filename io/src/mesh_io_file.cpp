@@ -41,17 +41,7 @@ class TempFile {
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
 
-  void Write(std::string_view bytes) {
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) FailWith("writing failed", errno);
-      done += static_cast<std::size_t>(n);
-    }
-  }
-
-  // Writes `bytes` at `offset` (within what was written), leaving the file offset at the end.
+  // Writes `bytes` at `offset`: past the end (appending) or over what was written.
   void WriteAt(std::size_t offset, std::string_view bytes) {
     std::size_t done = 0;
     while (done < bytes.size()) {
@@ -169,7 +159,7 @@ AtomicFileWriter::AtomicFileWriter(const std::filesystem::path& file) {
 AtomicFileWriter::~AtomicFileWriter() = default;
 
 void AtomicFileWriter::Append(std::string_view bytes) {
-  temp_->file.Write(bytes);
+  temp_->file.WriteAt(size_, bytes);
   size_ += bytes.size();
 }
 
