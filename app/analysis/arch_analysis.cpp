@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "analysis_code_hash.h"
 #include "arch_geometry.h"
 #include "tooth_landmarks.h"
 #include "tooth_regions.h"
@@ -109,6 +110,8 @@ std::vector<io::Landmark> ArchAnalysis::Points() const {
   for (const ArchLandmark& l : landmarks) points.push_back(l.landmark);
   return points;
 }
+
+const char* ArchAnalysisCodeVersion() { return kAnalysisCodeHash; }
 
 ArchAnalysis AnalyzeArch(const io::TriangleMesh& jaw_J, io::Jaw which,
                          const ArchAnalysisOptions& options) {

@@ -100,6 +100,10 @@ struct ArchAnalysisOptions {
 ArchAnalysis AnalyzeArch(const io::TriangleMesh& jaw_J, io::Jaw which,
                          const ArchAnalysisOptions& options = {});
 
+/// 16 hex digits that change whenever the analysis's code does (a hash of its sources, made by
+/// the build): what a cached AnalyzeArch result is keyed by besides the mesh and the options.
+const char* ArchAnalysisCodeVersion();
+
 /// Given landmarks override detected ones: each of `given` of this analysis's jaw replaces the
 /// detected landmark of the same tooth and type (or is added), with source kGiven, confidence 1
 /// and method "given". Points are in the analysis's frame J. Landmarks of the other jaw are

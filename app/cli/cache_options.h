@@ -1,5 +1,6 @@
-// `--cache DIR` and `--no-cache` of the commands that build oracles (propose, refine, report,
-// demo): where the oracle cache lives (session/oracle_cache.h), or that it is not used.
+// `--cache DIR` and `--no-cache` of the commands that build oracles or analyse arches (propose,
+// refine, report, demo, analyze): where the cache of oracles and arch analyses lives
+// (session/oracle_cache.h), or that it is not used.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -18,9 +19,10 @@ struct CacheArgs {
 /// Adds `--cache DIR` and `--no-cache` (exclusive) to `cmd`.
 inline void AddCacheOptions(CLI::App* cmd, CacheArgs* args) {
   auto* folder = cmd->add_option("--cache", args->folder,
-                                 "Folder of the oracle cache (default: $XDG_CACHE_HOME/occlude, "
-                                 "else ~/.cache/occlude)");
-  cmd->add_flag("--no-cache", args->off, "Build every oracle; neither read nor write the cache")
+                                 "Folder of the cache of oracles and arch analyses (default: "
+                                 "$XDG_CACHE_HOME/occlude, else ~/.cache/occlude)");
+  cmd->add_flag("--no-cache", args->off,
+                "Build every oracle and analysis; neither read nor write the cache")
       ->excludes(folder);
 }
 

@@ -15,6 +15,7 @@
 #include "base/text_format.h"
 #include "base/timing.h"
 #include "base/user_error.h"
+#include "cli/cache_options.h"
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "config/case_config.h"
@@ -24,6 +25,7 @@
 #include "session/case_analysis.h"
 #include "session/case_session.h"
 #include "session/jaw_pair.h"
+#include "session/oracle_cache.h"
 
 namespace occlude::app {
 namespace {
@@ -33,6 +35,7 @@ struct AnalyzeArgs {
   std::string case_dir;
   std::string pose;
   std::string landmarks;
+  CacheArgs cache;
   std::string out;
 };
 
@@ -86,7 +89,7 @@ void Write(const AnalysisInputs& in, const std::filesystem::path& out, double st
 }
 
 void AnalyzeConfig(const AnalyzeArgs& args, double start) {
-  const CaseConfig config = WithLandmarksOption(LoadCaseConfig(args.config), args.landmarks);
+  const CaseConfig config = LoadCaseConfigWithOptions(args.config, args.landmarks, args.cache);
   const PoseOption pose = ReadPoseOption(args.pose);
   const std::filesystem::path out = PrepareCaseOutput(config, args.out);
   CaseSession session(config);
@@ -111,7 +114,9 @@ void AnalyzeCaseFolder(const AnalyzeArgs& args, double start) {
       landmarks ? ReadGivenLandmarks(*landmarks) : std::vector<io::Landmark>{};
   const JawPair pair = LoadCaseFolder(args.case_dir);
   PrepareOutputDir(args.out);
-  const CaseAnalysis analysis = AnalyzeCase(pair, given);
+  const CaseConfig defaults = WithCacheArgs(CaseConfig{}, args.cache);
+  OracleCache cache({defaults.cache_enabled, defaults.cache_folder, defaults.cache_mb}, &std::cerr);
+  const CaseAnalysis analysis = AnalyzeCase(pair, given, &cache);
   AnalysisInputs in;
   in.case_name = pair.name;
   in.pose_source = pose.given ? pose.source : "the registered bite (as scanned)";
@@ -152,6 +157,7 @@ void AddAnalyzeCommand(CLI::App& app) {
                   "Pose file (JSON with a 4x4 \"X_LU\"); default: the config's start pose, or "
                   "the registered bite of --case");
   AddLandmarksOption(cmd, &args->landmarks);
+  AddCacheOptions(cmd, &args->cache);
   cmd->add_option("--out", args->out,
                   "Output folder; default: [output] folder of the config (required with --case)");
   cmd->callback([args] { RunAnalyze(*args); });

@@ -7,14 +7,33 @@
 #include "base/tasks.h"
 #include "base/user_error.h"
 #include "occlude/io/landmark_file.h"
+#include "session/analysis_entry.h"
+#include "session/oracle_cache.h"
 
 namespace occlude::app {
 
-CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given) {
+analysis::ArchAnalysis AnalyzeJaw(const io::TriangleMesh& mesh, io::Jaw jaw, OracleCache* cache) {
+  const analysis::ArchAnalysisOptions options;
+  if (cache == nullptr || cache->folder().empty()) return analysis::AnalyzeArch(mesh, jaw, options);
+  const std::uint64_t key = ArchAnalysisKey(mesh, jaw, options);
+  if (const std::optional<std::string> bytes = cache->GetBytes(kArchAnalysisEntryKind, key)) {
+    try {
+      return DecodeArchAnalysis(*bytes);
+    } catch (const std::runtime_error&) {
+      // An entry of this key that passed its checksum but does not decode: made again below.
+    }
+  }
+  analysis::ArchAnalysis made = analysis::AnalyzeArch(mesh, jaw, options);
+  cache->PutBytes(kArchAnalysisEntryKind, key, EncodeArchAnalysis(made));
+  return made;
+}
+
+CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given,
+                         OracleCache* cache) {
   CaseAnalysis a;
   // The two jaws are analysed independently, at once.
-  RunTasks({[&] { a.upper_U = analysis::AnalyzeArch(*pair.upper_U, io::Jaw::kUpper); },
-            [&] { a.lower_L = analysis::AnalyzeArch(*pair.lower_L, io::Jaw::kLower); }});
+  RunTasks({[&] { a.upper_U = AnalyzeJaw(*pair.upper_U, io::Jaw::kUpper, cache); },
+            [&] { a.lower_L = AnalyzeJaw(*pair.lower_L, io::Jaw::kLower, cache); }});
   analysis::ApplyGivenLandmarks(given, &a.lower_L);
   analysis::ApplyGivenLandmarks(given, &a.upper_U);
   a.has_given_landmarks = !given.empty();

@@ -23,11 +23,19 @@ struct CaseAnalysis {
   bool has_given_landmarks = false;
 };
 
+class OracleCache;
+
+/// The arch analysis of one jaw (analysis::AnalyzeArch with the default options), from `cache`
+/// when it holds this mesh's (session/analysis_entry.h), else made and saved there (null: made).
+analysis::ArchAnalysis AnalyzeJaw(const io::TriangleMesh& mesh, io::Jaw jaw, OracleCache* cache);
+
+/// Both jaws at once through AnalyzeJaw.
 /// `given`: landmarks as read by io::ReadLandmarkFile, lower ones in L, upper ones in U (the
 /// frame of `pair.upper_U`: for a pair re-expressed by AtReference, the upper ones moved by the
 /// original X_LU_ref first, see GivenAtReference). A jaw on which no tooth is found gives an
 /// analysis whose `error` says so; its given landmarks are still applied.
-CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given = {});
+CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given = {},
+                         OracleCache* cache = nullptr);
 
 /// The clinical relationships with the upper jaw at X_LU (frame from the landmarks when
 /// given, else the lower arch frame, as ComputeRelationships decides).

@@ -132,7 +132,9 @@ class CaseSession {
   // what every oracle built holds.
   std::unique_ptr<collision::JawOracle> whole_finest_;
   std::vector<OracleModel> models_;
-  std::unique_ptr<OracleCache> cache_;  ///< made on the first oracle (config_'s cache settings)
+  /// The cache of oracles and arch analyses (config_'s cache settings); shared with the
+  /// analysis's thread of Prefetch.
+  std::shared_ptr<OracleCache> cache_;
   std::unique_ptr<collision::JawOracle> BuildOracle(std::shared_ptr<const io::TriangleMesh> lower_L,
                                                     std::shared_ptr<const io::TriangleMesh> upper_U,
                                                     const collision::OracleOptions& options,

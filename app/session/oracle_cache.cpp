@@ -2,9 +2,10 @@
 #include "session/oracle_cache.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -12,6 +13,7 @@
 
 #include "occlude/collision/oracle_file.h"
 #include "occlude/io/atomic_file.h"
+#include "occlude/io/content_hash.h"
 #include "occlude/io/mesh_io.h"
 
 namespace occlude::app {
@@ -19,21 +21,66 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kCacheEntryPrefix[] = "oracle-";
-constexpr char kCacheEntrySuffix[] = ".occo";
+constexpr char kOracleKind[] = "oracle";
+constexpr char kEntrySuffix[] = ".occo";
 constexpr char kSavedOracleMagic[] = "OCCLORCL";
+constexpr char kByteEntryMagic[] = "OCCLBYTE";
+constexpr std::uint32_t kByteEntryFormat = 1;
+/// magic, format, a zero word, key, size, checksum
+constexpr std::size_t kByteEntryHeader = 8 + 4 + 4 + 8 + 8 + 8;
 
-// True for a file named like an entry whose first bytes are the saved-oracle magic.
+bool IsKind(std::string_view kind) {
+  return !kind.empty() &&
+         std::all_of(kind.begin(), kind.end(), [](char c) { return c >= 'a' && c <= 'z'; });
+}
+
+// The kind of a file named like an entry, "<kind>-<16 hex digits>.occo"; empty for any other.
+std::string EntryKind(const std::string& name) {
+  const std::string suffix = kEntrySuffix;
+  const std::size_t tail = 1 + 16 + suffix.size();
+  if (name.size() <= tail || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return {};
+  const std::string kind = name.substr(0, name.size() - tail);
+  const std::string hex = name.substr(kind.size() + 1, 16);
+  const bool is_hex = std::all_of(hex.begin(), hex.end(), [](char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+  });
+  return name[kind.size()] == '-' && is_hex && IsKind(kind) ? kind : std::string();
+}
+
+// True for a file named like an entry whose first bytes are the magic of its kind.
 bool IsCacheEntry(const fs::path& file) {
-  const std::string name = file.filename().string();
-  const std::string prefix = kCacheEntryPrefix, suffix = kCacheEntrySuffix;
-  if (name.size() != prefix.size() + 16 + suffix.size() || name.rfind(prefix, 0) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    return false;
-  }
+  const std::string kind = EntryKind(file.filename().string());
+  if (kind.empty()) return false;
   std::ifstream in(file, std::ios::binary);
   char magic[8] = {};
-  return in.read(magic, sizeof magic) && std::equal(magic, magic + 8, kSavedOracleMagic);
+  const char* expected = kind == kOracleKind ? kSavedOracleMagic : kByteEntryMagic;
+  return in.read(magic, sizeof magic) && std::equal(magic, magic + 8, expected);
+}
+
+template <typename T>
+void PutValue(std::string* out, T value) {
+  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+template <typename T>
+T ValueAt(std::string_view bytes, std::size_t at) {
+  T value{};
+  std::memcpy(&value, bytes.data() + at, sizeof(T));
+  return value;
+}
+
+// The whole file, or nullopt when it cannot be opened or read.
+std::optional<std::string> ReadWholeFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string content;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) return std::nullopt;
+  content.resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  if (!in.read(content.data(), size)) return std::nullopt;
+  return content;
 }
 
 }  // namespace
@@ -47,9 +94,44 @@ fs::path DefaultCacheFolder() {
 }
 
 std::string OracleCacheEntryName(std::uint64_t key) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(key));
-  return kCacheEntryPrefix + std::string(hex) + kCacheEntrySuffix;
+  return kOracleKind + ("-" + io::HashHex(key)) + kEntrySuffix;
+}
+
+std::string ByteEntryName(std::string_view kind, std::uint64_t key) {
+  if (!IsKind(kind) || kind == kOracleKind) {
+    throw std::invalid_argument("ByteEntryName: kind '" + std::string(kind) +
+                                "' must be lower-case letters and not \"oracle\"");
+  }
+  return std::string(kind) + "-" + io::HashHex(key) + kEntrySuffix;
+}
+
+std::string ByteEntryFile(std::uint64_t key, std::string_view bytes) {
+  std::string file(kByteEntryMagic, 8);
+  PutValue(&file, kByteEntryFormat);
+  PutValue(&file, std::uint32_t{0});
+  PutValue(&file, key);
+  PutValue(&file, static_cast<std::uint64_t>(bytes.size()));
+  PutValue(&file, io::Hash64(bytes.data(), bytes.size(), key));
+  file.append(bytes);
+  return file;
+}
+
+std::string ByteEntryBytes(std::uint64_t key, std::string_view file) {
+  if (file.size() < kByteEntryHeader || file.compare(0, 8, kByteEntryMagic) != 0)
+    throw std::runtime_error("not a byte entry (no header)");
+  if (ValueAt<std::uint32_t>(file, 8) != kByteEntryFormat)
+    throw std::runtime_error("format " + std::to_string(ValueAt<std::uint32_t>(file, 8)) +
+                             ", expected " + std::to_string(kByteEntryFormat));
+  if (ValueAt<std::uint64_t>(file, 16) != key) throw std::runtime_error("the entry of another key");
+  const auto size = ValueAt<std::uint64_t>(file, 24);
+  if (size != file.size() - kByteEntryHeader) {
+    throw std::runtime_error("truncated or extended: " + std::to_string(file.size()) +
+                             " bytes, the header says " + std::to_string(size + kByteEntryHeader));
+  }
+  const std::string_view bytes = file.substr(kByteEntryHeader);
+  if (io::Hash64(bytes.data(), bytes.size(), key) != ValueAt<std::uint64_t>(file, 32))
+    throw std::runtime_error("checksum mismatch");
+  return std::string(bytes);
 }
 
 OracleCache::OracleCache(OracleCacheSettings settings, std::ostream* warnings)
@@ -58,8 +140,9 @@ OracleCache::OracleCache(OracleCacheSettings settings, std::ostream* warnings)
 }
 
 void OracleCache::Warn(const std::string& line, bool* once) {
-  if (*once || warnings_ == nullptr) return;
-  *once = true;
+  const std::lock_guard<std::mutex> lock(warn_mutex_);
+  if (warnings_ == nullptr || (once != nullptr && *once)) return;
+  if (once != nullptr) *once = true;
   *warnings_ << "occlude: warning: " << line << "\n";
 }
 
@@ -107,6 +190,44 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
   }
 }
 
+std::optional<std::string> OracleCache::GetBytes(std::string_view kind, std::uint64_t key) {
+  if (folder_.empty()) return std::nullopt;
+  const fs::path file = folder_ / ByteEntryName(kind, key);
+  const std::optional<std::string> content = ReadWholeFile(file);
+  if (!content) return std::nullopt;
+  try {
+    std::string bytes = ByteEntryBytes(key, *content);
+    std::error_code ec;
+    fs::last_write_time(file, fs::file_time_type::clock::now(), ec);  // the LRU touch
+    return bytes;
+  } catch (const std::runtime_error& e) {
+    Warn("cache entry not used (" + file.string() + ": " + e.what() + "); making it again",
+         nullptr);
+    return std::nullopt;
+  }
+}
+
+void OracleCache::PutBytes(std::string_view kind, std::uint64_t key, std::string_view bytes) {
+  if (folder_.empty()) return;
+  const fs::path file = folder_ / ByteEntryName(kind, key);
+  std::error_code ec;
+  fs::create_directories(folder_, ec);
+  try {
+    if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
+    io::WriteFileAtomically(file, ByteEntryFile(key, bytes));
+  } catch (const std::exception& e) {
+    WarnNotWritten(e.what());
+    return;
+  }
+  EvictOracleCache(folder_, static_cast<std::uintmax_t>(max_mb_ * 1024.0 * 1024.0), file);
+}
+
+void OracleCache::WarnNotWritten(const std::string& why) {
+  Warn("oracle cache not written (" + why +
+           "); going on without it (--cache DIR for another folder, --no-cache to skip it)",
+       &warned_write_);
+}
+
 bool OracleCache::Save(const collision::JawOracle& oracle, const fs::path& file) {
   std::error_code ec;
   fs::create_directories(folder_, ec);
@@ -114,9 +235,7 @@ bool OracleCache::Save(const collision::JawOracle& oracle, const fs::path& file)
     if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
     collision::SaveOracleFile(oracle, file);
   } catch (const std::exception& e) {
-    Warn("oracle cache not written (" + std::string(e.what()) +
-             "); going on without it (--cache DIR for another folder, --no-cache to skip it)",
-         &warned_write_);
+    WarnNotWritten(e.what());
     return false;
   }
   EvictOracleCache(folder_, static_cast<std::uintmax_t>(max_mb_ * 1024.0 * 1024.0), file);

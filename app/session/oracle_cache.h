@@ -11,14 +11,21 @@
 // files of our name and magic are ever removed. A truncated, corrupt, foreign or mismatched
 // entry is rebuilt and replaced. A folder that cannot be made, read or written is one warning
 // line on the warning stream and the run goes on without it; the cache never fails a run.
+//
+// Beside the oracles, small products of one mesh alone (the arch analysis of a jaw) are kept as
+// byte entries "<kind>-<key as 16 hex digits>.occo" (magic, format, key, size and checksum in
+// front: ByteEntry*), under the same checks, writes, warnings and size limit.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 
 #include "occlude/collision/oracle.h"
 #include "occlude/io/triangle_mesh.h"
@@ -56,6 +63,15 @@ class OracleCache {
       std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
       const std::function<std::unique_ptr<collision::JawOracle>()>& build);
 
+  /// The bytes last saved under `kind` (lower-case letters, e.g. "analysis") and `key`, when
+  /// the entry passes every check; nullopt when the cache is off or the entry is missing or bad
+  /// (a bad one is one line on the warning stream; the caller makes the bytes again and
+  /// PutBytes replaces it). Both may be called from several threads at once.
+  std::optional<std::string> GetBytes(std::string_view kind, std::uint64_t key);
+  /// Saves `bytes` under `kind` and `key` (written then renamed, then the folder evicted to its
+  /// limit); a folder that cannot be written is a warning, as for oracles.
+  void PutBytes(std::string_view kind, std::uint64_t key, std::string_view bytes);
+
   /// The folder in use (empty when the cache is off).
   const std::filesystem::path& folder() const { return folder_; }
   OracleCacheOutcome last_outcome() const { return last_; }
@@ -64,16 +80,30 @@ class OracleCache {
   std::filesystem::path folder_;
   double max_mb_;
   std::ostream* warnings_;
+  std::mutex warn_mutex_;  ///< Warn may be called from the threads of GetBytes and PutBytes
   bool warned_write_ = false;
   OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
   /// Writes the entry (then evicts to the limit); false, with a warning, when it cannot.
   bool Save(const collision::JawOracle& oracle, const std::filesystem::path& file);
+  /// One line on the warning stream; with `once`, only the first time.
   void Warn(const std::string& line, bool* once);
+  void WarnNotWritten(const std::string& why);  ///< once per cache
 };
 
+/// The file name of the byte entry of `kind` and `key`: "<kind>-<16 hex digits>.occo".
+std::string ByteEntryName(std::string_view kind, std::uint64_t key);
+/// A byte entry's file content: a header (magic, format version, key, size, checksum of the
+/// bytes) and the bytes.
+std::string ByteEntryFile(std::uint64_t key, std::string_view bytes);
+/// The bytes of a byte entry's file content written by ByteEntryFile for `key`; throws
+/// std::runtime_error saying what is wrong (not an entry, another format, another key,
+/// truncated, checksum) otherwise.
+std::string ByteEntryBytes(std::uint64_t key, std::string_view file_content);
+
 /// Unlinks the oldest (by mtime) of the cache entries in `folder` (files named like
-/// OracleCacheEntryName and starting with the saved-oracle magic) until their total size is at
-/// most `max_bytes`; `keep` is never removed. Errors are ignored (another run may be evicting).
+/// OracleCacheEntryName or ByteEntryName and starting with the magic of their kind) until their
+/// total size is at most `max_bytes`; `keep` is never removed. Errors are ignored (another run
+/// may be evicting).
 void EvictOracleCache(const std::filesystem::path& folder, std::uintmax_t max_bytes,
                       const std::filesystem::path& keep);
 

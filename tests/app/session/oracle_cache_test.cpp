@@ -2,13 +2,16 @@
 // answers bit-identically to a fresh build; a changed mesh byte or setting misses; truncated,
 // corrupt and foreign entries are rebuilt and replaced; concurrent writers leave one valid
 // entry; eviction removes the least recently used entries of our format only; a read-only
-// folder is one warning line. Every test uses its own temporary folder.
+// folder is one warning line. Byte entries (the arch analyses) likewise: read back as written,
+// any damage or another key refused with one warning line, counted by eviction. Every test uses
+// its own temporary folder.
 #include "session/oracle_cache.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <fstream>
@@ -17,6 +20,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "occlude/collision/oracle_file.h"
 #include "occlude/io/content_hash.h"
@@ -257,6 +262,134 @@ TEST_F(OracleCacheTest, OffBuildsAndWritesNothing) {
             [&] { return Build(jaws_->lower_L, options_); });
   EXPECT_EQ(cache.last_outcome(), OracleCacheOutcome::kOff);
   EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+// Byte entries: the bytes come back as put; a truncated, extended, flipped, foreign or
+// other-key entry is refused with one warning line naming the file and the trouble (and
+// replaced by the next put); names check their kind.
+TEST(OracleCacheBytesTest, BytesComeBackAsPutAndDamageIsRefusedWithOneLine) {
+  TempDir dir;
+  std::ostringstream warnings;
+  OracleCacheSettings settings;
+  settings.folder = dir.path();
+  OracleCache cache(settings, &warnings);
+  const std::string bytes = std::string("an analysis\0with a zero", 24) + std::string(1000, 'x');
+  EXPECT_FALSE(cache.GetBytes("analysis", 7).has_value());  // missing: no warning
+  cache.PutBytes("analysis", 7, bytes);
+  const fs::path entry = dir / ByteEntryName("analysis", 7);
+  ASSERT_TRUE(fs::exists(entry));
+  EXPECT_EQ(cache.GetBytes("analysis", 7), bytes);
+  EXPECT_FALSE(cache.GetBytes("analysis", 8).has_value());  // another key: another file
+  EXPECT_TRUE(warnings.str().empty()) << warnings.str();
+
+  const std::string file = ByteEntryFile(7, bytes);
+  std::string flipped = file;
+  flipped[file.size() - 10] ^= 1;
+  std::string other_format = file;
+  other_format[8] = 2;
+  const std::vector<std::pair<std::string, std::string>> damaged = {
+      {file.substr(0, file.size() - 1), "truncated"},
+      {file + "y", "extended"},
+      {flipped, "checksum"},
+      {other_format, "format 2"},
+      {ByteEntryFile(8, bytes), "another key"},
+      {"OCCLORCL not ours", "no header"}};
+  for (const auto& [content, trouble] : damaged) {
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << content;
+    warnings.str("");
+    EXPECT_FALSE(cache.GetBytes("analysis", 7).has_value()) << trouble;
+    const std::string text = warnings.str();
+    EXPECT_NE(text.find(entry.string()), std::string::npos) << text;
+    EXPECT_NE(text.find(trouble), std::string::npos) << text;
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    EXPECT_THROW(ByteEntryBytes(7, content), std::runtime_error) << trouble;
+  }
+  cache.PutBytes("analysis", 7, bytes);
+  EXPECT_EQ(cache.GetBytes("analysis", 7), bytes);
+  EXPECT_EQ(ByteEntryBytes(7, ByteEntryFile(7, "")), "");
+
+  EXPECT_EQ(ByteEntryName("analysis", 0xabc), "analysis-0000000000000abc.occo");
+  for (const char* bad : {"", "oracle", "Analysis", "an-alysis", "a1"})
+    EXPECT_THROW(ByteEntryName(bad, 1), std::invalid_argument) << bad;
+}
+
+TEST(OracleCacheBytesTest, OffOrUnwritableIsNothingOrOneWarning) {
+  TempDir dir;
+  std::ostringstream warnings;
+  OracleCacheSettings off;
+  off.enabled = false;
+  off.folder = dir.path();
+  OracleCache none(off, &warnings);
+  none.PutBytes("analysis", 1, "x");
+  EXPECT_FALSE(none.GetBytes("analysis", 1).has_value());
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  // A folder under a regular file cannot be made, by root either.
+  std::ofstream(dir / "file") << "x";
+  OracleCacheSettings blocked;
+  blocked.folder = dir / "file" / "cache";
+  OracleCache cache(blocked, &warnings);
+  for (int i = 0; i < 3; ++i) {
+    cache.PutBytes("analysis", 1, "x");
+    EXPECT_FALSE(cache.GetBytes("analysis", 1).has_value());
+  }
+  const std::string text = warnings.str();
+  EXPECT_NE(text.find("warning: oracle cache not written"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+}
+
+// Several threads putting and getting the same entries at once: every get is either nothing or
+// the bytes put, never a part, and no warning (no entry is ever seen half-written).
+TEST(OracleCacheBytesTest, ConcurrentPutsAndGetsSeeWholeEntriesOnly) {
+  TempDir dir;
+  std::ostringstream warnings;
+  OracleCacheSettings settings;
+  settings.folder = dir.path();
+  OracleCache cache(settings, &warnings);
+  const std::string bytes(200000, 'b');
+  std::atomic<int> wrong{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < 20; ++i) {
+        if ((i + t) % 2 == 0) cache.PutBytes("analysis", 3, bytes);
+        const auto got = cache.GetBytes("analysis", 3);
+        if (got && *got != bytes) ++wrong;
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(wrong.load(), 0);
+  EXPECT_TRUE(warnings.str().empty()) << warnings.str();
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1u);  // no temporary file left
+}
+
+TEST_F(OracleCacheTest, EvictionCountsByteEntriesAndKeepsForeignFiles) {
+  TempDir dir;
+  OracleCacheOutcome outcome;
+  Get(dir.path(), &outcome);
+  const fs::path oracle = EntryOf(dir.path());
+  const auto now = fs::file_time_type::clock::now();
+  OracleCacheSettings settings;
+  settings.folder = dir.path();
+  OracleCache cache(settings, &warnings_);
+  cache.PutBytes("analysis", 1, std::string(1000, 'a'));
+  cache.PutBytes("analysis", 2, std::string(1000, 'a'));
+  const fs::path older = dir / ByteEntryName("analysis", 1);
+  const fs::path newer = dir / ByteEntryName("analysis", 2);
+  fs::last_write_time(older, now - std::chrono::hours(3));
+  fs::last_write_time(newer, now - std::chrono::hours(2));
+  fs::last_write_time(oracle, now - std::chrono::hours(1));
+  const fs::path foreign = dir / ByteEntryName("analysis", 3);
+  std::ofstream(foreign) << "not an entry";
+  fs::last_write_time(foreign, now - std::chrono::hours(10));
+  // Room for the oracle and one byte entry: the older byte entry goes.
+  EvictOracleCache(dir.path(), fs::file_size(oracle) + fs::file_size(newer), "");
+  EXPECT_FALSE(fs::exists(older));
+  EXPECT_TRUE(fs::exists(newer));
+  EXPECT_TRUE(fs::exists(oracle));
+  EXPECT_TRUE(fs::exists(foreign));
 }
 
 }  // namespace
