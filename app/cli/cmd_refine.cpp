@@ -387,8 +387,10 @@ void RunRefine(const RefineArgs& args) {
     return;
   }
   // The 3D view's meshes too are decimated while the pose settles.
-  std::future<DisplayJaws> display = std::async(
-      std::launch::async, [jaws = session->jaws()] { return DecimateJawsForViewer(jaws); });
+  std::future<DisplayJaws> display =
+      std::async(std::launch::async, [jaws = session->jaws(), cache = session->cache()] {
+        return DecimateJawsForViewer(jaws, cache.get());
+      });
   RefineOutcome r = Refine(*session, base);
   const DisplayJaws decimated = display.get();
   WriteRefinement(*session, r, base, source, out, &decimated);

@@ -36,7 +36,7 @@ RefineLivePage::RefineLivePage(const std::string& bind, int port) {
 const DisplayJaws& RefineLivePage::Display(const CaseSession& session) {
   const JawPair& jaws = session.jaws();
   if (jaws.lower_L.get() != shown_lower_ || jaws.upper_U.get() != shown_upper_) {
-    display_ = DecimateJawsForViewer(jaws);
+    display_ = DecimateJawsForViewer(jaws, session.cache().get());
     shown_lower_ = jaws.lower_L.get();
     shown_upper_ = jaws.upper_U.get();
     page_set_ = false;

@@ -56,7 +56,7 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   DisplayJaws display;
   ReportAnalysis analysis;
   RunTasks({[&] { analysis = AnalyzePose(session, best.X_LU); },
-            [&] { display = DecimateJawsForViewer(session.jaws()); }});
+            [&] { display = DecimateJawsForViewer(session.jaws(), session.cache().get()); }});
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;
   clock.Start("rendered the maps and views");

@@ -10,10 +10,26 @@
 
 namespace occlude::app {
 
-DisplayJaws DecimateJawsForViewer(const JawPair& jaws, std::size_t max_triangles) {
+namespace {
+
+io::DecimationResult DecimateForViewer(const io::TriangleMesh& mesh, OracleCache* cache,
+                                       std::size_t max_triangles) {
+  const io::DecimationRequest request{max_triangles};
+  // A mesh within the budget is returned as it is: nothing worth keeping.
+  if (mesh.num_triangles() <= max_triangles) cache = nullptr;
+  return MadeOrCached(
+      cache, kDisplayEntryKind, cache != nullptr ? io::DecimationKey(mesh, request) : 0,
+      [&] { return io::DecimateForDisplay(mesh, request); }, io::EncodeDecimation,
+      [&](std::string_view bytes) { return io::DecodeDecimation(bytes, mesh); });
+}
+
+}  // namespace
+
+DisplayJaws DecimateJawsForViewer(const JawPair& jaws, OracleCache* cache,
+                                  std::size_t max_triangles) {
   DisplayJaws out;
-  out.lower = io::DecimateForDisplay(*jaws.lower_L, {max_triangles});
-  out.upper = io::DecimateForDisplay(*jaws.upper_U, {max_triangles});
+  out.lower = DecimateForViewer(*jaws.lower_L, cache, max_triangles);
+  out.upper = DecimateForViewer(*jaws.upper_U, cache, max_triangles);
   return out;
 }
 

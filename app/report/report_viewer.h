@@ -14,6 +14,7 @@
 #include "occlude/io/display_decimation.h"
 #include "occlude/planner/plan.h"
 #include "report/report_analysis.h"
+#include "session/oracle_cache.h"
 #include "viewer/viewer_page.h"
 
 namespace occlude::app {
@@ -21,13 +22,16 @@ namespace occlude::app {
 /// Triangles per jaw in the 3D view at most (two jaws: a few hundred thousand in all).
 inline constexpr std::size_t kViewerTrianglesPerJaw = 100000;
 
-/// Both jaws of a session decimated for display (deterministic; a fifth of a second per
-/// 150k-triangle jaw). The source meshes must outlive nothing: the results own their meshes.
+/// Both jaws of a session decimated for display (deterministic; a tenth of a second per
+/// 150k-triangle jaw), kept in `cache` (entries "display-<key>.occo": io::DecimationKey, bit
+/// for bit on a hit) unless it is null or off. The source meshes must outlive nothing: the
+/// results own their meshes.
 struct DisplayJaws {
   io::DecimationResult lower;  ///< in L
   io::DecimationResult upper;  ///< in U
 };
-DisplayJaws DecimateJawsForViewer(const JawPair& jaws,
+inline constexpr char kDisplayEntryKind[] = "display";
+DisplayJaws DecimateJawsForViewer(const JawPair& jaws, OracleCache* cache,
                                   std::size_t max_triangles = kViewerTrianglesPerJaw);
 
 /// The view's meshes, axes and scale (no proposal yet); points into `display`.

@@ -19,7 +19,7 @@ namespace {
 std::string ReportViewerHtml(const CaseSession& session, const ReportAnalysis& analysis,
                              const ReportView& view) {
   DisplayJaws own;
-  if (view.display == nullptr) own = DecimateJawsForViewer(session.jaws());
+  if (view.display == nullptr) own = DecimateJawsForViewer(session.jaws(), session.cache().get());
   const DisplayJaws& display = view.display != nullptr ? *view.display : own;
   ViewerInputs in = ReportViewerInputs(session, display);
   in.proposals = view.poses;
@@ -66,7 +66,8 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
           png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image);
         }};
     if (view.display == nullptr) {
-      tasks.insert(tasks.begin() + 2, [&] { decimated = DecimateJawsForViewer(jaws); });
+      tasks.insert(tasks.begin() + 2,
+                   [&] { decimated = DecimateJawsForViewer(jaws, session.cache().get()); });
       own_view.display = &decimated;
     }
     RunTasks(tasks);

@@ -14,18 +14,10 @@ namespace occlude::app {
 
 analysis::ArchAnalysis AnalyzeJaw(const io::TriangleMesh& mesh, io::Jaw jaw, OracleCache* cache) {
   const analysis::ArchAnalysisOptions options;
-  if (cache == nullptr || cache->folder().empty()) return analysis::AnalyzeArch(mesh, jaw, options);
-  const std::uint64_t key = ArchAnalysisKey(mesh, jaw, options);
-  if (const std::optional<std::string> bytes = cache->GetBytes(kArchAnalysisEntryKind, key)) {
-    try {
-      return DecodeArchAnalysis(*bytes);
-    } catch (const std::runtime_error&) {
-      // An entry of this key that passed its checksum but does not decode: made again below.
-    }
-  }
-  analysis::ArchAnalysis made = analysis::AnalyzeArch(mesh, jaw, options);
-  cache->PutBytes(kArchAnalysisEntryKind, key, EncodeArchAnalysis(made));
-  return made;
+  return MadeOrCached(
+      cache, kArchAnalysisEntryKind, ArchAnalysisKey(mesh, jaw, options),
+      [&] { return analysis::AnalyzeArch(mesh, jaw, options); }, EncodeArchAnalysis,
+      DecodeArchAnalysis);
 }
 
 CaseAnalysis AnalyzeCase(const JawPair& pair, const std::vector<io::Landmark>& given,

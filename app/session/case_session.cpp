@@ -120,7 +120,11 @@ std::string JawName(const CaseConfig& config, const std::optional<JawFiles>& jaw
 
 }  // namespace
 
-CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb) : config_(config) {
+CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb)
+    : config_(config),
+      cache_(std::make_shared<OracleCache>(
+          OracleCacheSettings{config.cache_enabled, config.cache_folder, config.cache_mb},
+          &std::cerr)) {
   StepClock clock;
   clock.Start("loaded the meshes");
   JawPair loaded = LoadConfigJaws(config_);
@@ -162,11 +166,6 @@ std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
     std::shared_ptr<const io::TriangleMesh> lower_L,
     std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
     const std::string& what) {
-  if (!cache_) {
-    cache_ = std::make_unique<OracleCache>(
-        OracleCacheSettings{config_.cache_enabled, config_.cache_folder, config_.cache_mb},
-        &std::cerr);
-  }
   StepClock clock;
   clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
   try {
@@ -346,7 +345,9 @@ void CaseSession::UpdateSettings(const CaseConfig& other) {
 void CaseSession::Prefetch() {
   // The threads hold the meshes (shared): the session may move while they run.
   if (!detected_ && !detecting_.valid()) {
-    detecting_ = std::async(std::launch::async, [jaws = jaws_] { return AnalyzeCase(jaws); });
+    detecting_ = std::async(std::launch::async, [jaws = jaws_, cache = cache_] {
+      return AnalyzeCase(jaws, {}, cache.get());
+    });
   }
   if (!maps_ && !upper_map_.valid()) {
     upper_map_ =
@@ -361,7 +362,7 @@ const CaseAnalysis& CaseSession::Analysis() {
   } else if (!detected_) {
     StepClock clock;
     clock.Start("analysed both arches");
-    detected_ = std::make_unique<CaseAnalysis>(AnalyzeCase(jaws_));
+    detected_ = std::make_unique<CaseAnalysis>(AnalyzeCase(jaws_, {}, cache_.get()));
   }
   analysis_ = std::make_unique<CaseAnalysis>(*detected_);
   analysis::ApplyGivenLandmarks(given_, &analysis_->lower_L);

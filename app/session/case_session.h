@@ -103,6 +103,10 @@ class CaseSession {
   /// output, report, landmarks: the given landmarks are read again) after Reusable(other).
   void UpdateSettings(const CaseConfig& other);
 
+  /// The cache of the session's oracles and arch analyses (off: its folder is empty), for
+  /// other products of the meshes alone (the 3D view's decimation).
+  const std::shared_ptr<OracleCache>& cache() const { return cache_; }
+
   /// The arch analysis of both jaws (built on first use, the detection kept across
   /// UpdateSettings) with the config's given landmarks (landmarks_file, read when the session
   /// is made: a bad file throws UserError there), upper ones moved with the upper jaw.

@@ -24,6 +24,7 @@
 #include <mutex>
 #include <optional>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -89,6 +90,25 @@ class OracleCache {
   void Warn(const std::string& line, bool* once);
   void WarnNotWritten(const std::string& why);  ///< once per cache
 };
+
+/// What `make()` gives, kept in `cache` as a byte entry of `kind` and `key`: decoded from the
+/// entry when there is one and it decodes (decode throws std::runtime_error otherwise), else
+/// made and saved (encode(made) -> bytes). A null cache, or one that is off: made.
+template <typename Make, typename Encode, typename Decode>
+auto MadeOrCached(OracleCache* cache, std::string_view kind, std::uint64_t key, Make&& make,
+                  Encode&& encode, Decode&& decode) -> decltype(make()) {
+  if (cache == nullptr || cache->folder().empty()) return make();
+  if (const std::optional<std::string> bytes = cache->GetBytes(kind, key)) {
+    try {
+      return decode(*bytes);
+    } catch (const std::runtime_error&) {
+      // An entry of this key that passed its checksum but does not decode: made again.
+    }
+  }
+  auto made = make();
+  cache->PutBytes(kind, key, encode(made));
+  return made;
+}
 
 /// The file name of the byte entry of `kind` and `key`: "<kind>-<16 hex digits>.occo".
 std::string ByteEntryName(std::string_view kind, std::uint64_t key);

@@ -6,11 +6,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+
+#include "decimation_code_hash.h"
+#include "occlude/io/content_hash.h"
 
 namespace occlude::io {
 namespace {
@@ -308,6 +312,96 @@ std::vector<float> ValuesAtKeptVertices(const DecimationResult& result,
     }
     out.push_back(per_input_vertex[static_cast<std::size_t>(v)]);
   }
+  return out;
+}
+
+namespace {
+
+constexpr std::uint32_t kDecimationEncoding = 1;
+
+// The fixed part of an encoding: version, vertex and triangle counts, cell and bound.
+struct DecimationHeader {
+  std::uint32_t version = kDecimationEncoding;
+  std::uint32_t zero = 0;
+  std::uint64_t vertices = 0;
+  std::uint64_t triangles = 0;
+  double cell_mm = 0.0;
+  double error_bound_mm = 0.0;
+};
+static_assert(sizeof(DecimationHeader) == 40, "no padding in the header");
+
+template <typename T>
+void Append(std::string* out, const T* data, std::size_t count) {
+  out->append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+}  // namespace
+
+std::uint64_t DecimationKey(const TriangleMesh& mesh, const DecimationRequest& request) {
+  Hasher64 h;
+  h.AddString("occlude display decimation");
+  h.AddValue(kDecimationEncoding);
+  h.AddString(kDecimationCodeHash);
+  h.AddValue(static_cast<std::uint64_t>(request.max_triangles));
+  h.AddValue(MeshContentHash(mesh));
+  return h.Finish();
+}
+
+std::string EncodeDecimation(const DecimationResult& result) {
+  DecimationHeader header;
+  header.vertices = result.source_vertex.size();
+  header.triangles = result.mesh.num_triangles();
+  header.cell_mm = result.cell_mm;
+  header.error_bound_mm = result.error_bound_mm;
+  std::string out;
+  out.reserve(sizeof header + 4 * header.vertices + 16 * header.triangles);
+  Append(&out, &header, 1);
+  Append(&out, result.source_vertex.data(), result.source_vertex.size());
+  for (const Eigen::Vector3i& t : result.mesh.triangles) Append(&out, t.data(), 3);
+  Append(&out, result.mesh.triangle_part.data(), result.mesh.triangle_part.size());
+  return out;
+}
+
+DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& mesh) {
+  DecimationHeader header;
+  if (bytes.size() < sizeof header) throw std::runtime_error("decimation: shorter than its header");
+  std::memcpy(&header, bytes.data(), sizeof header);
+  if (header.version != kDecimationEncoding)
+    throw std::runtime_error("decimation: encoding " + std::to_string(header.version));
+  if (header.vertices > bytes.size() || header.triangles > bytes.size() ||
+      bytes.size() != sizeof header + 4 * header.vertices + 16 * header.triangles) {
+    throw std::runtime_error("decimation: " + std::to_string(bytes.size()) +
+                             " bytes do not hold the counts of its header");
+  }
+  DecimationResult out;
+  out.cell_mm = header.cell_mm;
+  out.error_bound_mm = header.error_bound_mm;
+  const char* at = bytes.data() + sizeof header;
+  out.source_vertex.resize(header.vertices);
+  std::memcpy(out.source_vertex.data(), at, 4 * header.vertices);
+  at += 4 * header.vertices;
+  out.mesh.triangles.resize(header.triangles);
+  for (Eigen::Vector3i& t : out.mesh.triangles) {
+    std::memcpy(t.data(), at, 12);
+    at += 12;
+  }
+  out.mesh.triangle_part.resize(header.triangles);
+  std::memcpy(out.mesh.triangle_part.data(), at, 4 * header.triangles);
+  out.mesh.vertices.reserve(header.vertices);
+  for (const std::int32_t v : out.source_vertex) {
+    if (v < 0 || static_cast<std::size_t>(v) >= mesh.num_vertices())
+      throw std::runtime_error("decimation: a kept vertex is not one of the mesh's");
+    out.mesh.vertices.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+  }
+  out.mesh.parts = mesh.parts;
+  const auto nv = static_cast<int>(header.vertices);
+  for (const Eigen::Vector3i& t : out.mesh.triangles) {  // before the normals read the corners
+    if ((t.array() < 0).any() || (t.array() >= nv).any())
+      throw std::runtime_error("decimation: a triangle indexes a vertex it does not keep");
+  }
+  out.mesh.ComputeFaceNormals();
+  if (const std::string error = out.mesh.ConsistencyError(); !error.empty())
+    throw std::runtime_error("decimation: " + error);
   return out;
 }
 

@@ -1,12 +1,16 @@
 // Decimation for display: the budget is met, the shape stays within the stated
 // bound of the original (both ways, measured against the original triangles on a
 // smooth sphere), kept vertices are original vertices, parts (tooth numbers)
-// carry over, and the result is deterministic.
+// carry over, and the result is deterministic. Its cache encoding gives it back bit for bit,
+// refuses malformed bytes or another mesh, and its key follows the mesh and the budget.
 #include "occlude/io/display_decimation.h"
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 #include "occlude/collision/closest_point.h"
 #include "occlude/io/synthetic_jaws.h"
@@ -118,6 +122,65 @@ TEST(DisplayDecimationTest, ABadRequestNamesTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("max_triangles"), std::string::npos) << e.what();
   }
+}
+
+template <typename T>
+bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+TEST(DisplayDecimationTest, TheEncodingGivesTheResultBackBitForBit) {
+  const TriangleMesh mesh = MakeSyntheticJawPair({20000, 3}).upper_U;
+  const DecimationResult made = DecimateForDisplay(mesh, {6000});
+  ASSERT_LT(made.mesh.num_triangles(), mesh.num_triangles());
+  const DecimationResult back = DecodeDecimation(EncodeDecimation(made), mesh);
+  EXPECT_TRUE(SameBytes(back.mesh.vertices, made.mesh.vertices));
+  EXPECT_TRUE(SameBytes(back.mesh.triangles, made.mesh.triangles));
+  EXPECT_TRUE(SameBytes(back.mesh.face_normals, made.mesh.face_normals));
+  EXPECT_TRUE(SameBytes(back.mesh.triangle_part, made.mesh.triangle_part));
+  ASSERT_EQ(back.mesh.parts.size(), made.mesh.parts.size());
+  for (std::size_t i = 0; i < made.mesh.parts.size(); ++i) {
+    EXPECT_EQ(back.mesh.parts[i].name, made.mesh.parts[i].name);
+    EXPECT_EQ(back.mesh.parts[i].tooth_number, made.mesh.parts[i].tooth_number);
+  }
+  EXPECT_TRUE(SameBytes(back.source_vertex, made.source_vertex));
+  EXPECT_EQ(std::memcmp(&back.cell_mm, &made.cell_mm, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&back.error_bound_mm, &made.error_bound_mm, sizeof(double)), 0);
+}
+
+TEST(DisplayDecimationTest, MalformedBytesOrAnotherMeshThrow) {
+  const TriangleMesh mesh = MakeSyntheticJawPair({20000, 3}).upper_U;
+  const DecimationResult made = DecimateForDisplay(mesh, {6000});
+  const std::string good = EncodeDecimation(made);
+  std::string version = good;
+  version[0] = 9;
+  std::string vertex = good;  // the first kept vertex's index, out of the mesh
+  const std::int32_t far = 1 << 30;
+  std::memcpy(vertex.data() + 40, &far, 4);
+  std::string corner = good;  // the first triangle's first corner, beyond the kept vertices
+  const std::int32_t beyond = static_cast<std::int32_t>(made.source_vertex.size());
+  std::memcpy(corner.data() + 40 + 4 * made.source_vertex.size(), &beyond, 4);
+  std::string part = good;  // the last triangle's part, beyond the parts
+  const std::int32_t parts = static_cast<std::int32_t>(mesh.parts.size());
+  std::memcpy(part.data() + good.size() - 4, &parts, 4);
+  for (const std::string& bytes :
+       {std::string(), good.substr(0, 39), good.substr(0, good.size() - 1), good + "x", version,
+        vertex, corner, part}) {
+    EXPECT_THROW(DecodeDecimation(bytes, mesh), std::runtime_error) << bytes.size();
+  }
+  // The bytes of one mesh for a smaller one: its kept vertices are not all there.
+  const TriangleMesh other = test::MakeBox(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+  EXPECT_THROW(DecodeDecimation(good, other), std::runtime_error);
+}
+
+TEST(DisplayDecimationTest, TheKeyFollowsTheMeshAndTheBudget) {
+  const TriangleMesh mesh = MakeSyntheticJawPair({20000, 3}).upper_U;
+  const std::uint64_t key = DecimationKey(mesh, {6000});
+  EXPECT_EQ(key, DecimationKey(TriangleMesh(mesh), {6000}));
+  EXPECT_NE(key, DecimationKey(mesh, {6001}));
+  TriangleMesh moved = mesh;
+  moved.vertices[3].z() = std::nextafter(moved.vertices[3].z(), 1e9);
+  EXPECT_NE(key, DecimationKey(moved, {6000}));
 }
 
 }  // namespace

@@ -2,18 +2,21 @@
 // decimated to 2,000 for display): the view's distances are the analysis's at the kept
 // vertices (which are original vertices), report.html holds the view, and upper_at_pose.ply /
 // lower.ply carry every vertex of the full jaws at the pose with the contact colour and the
-// analysis's distance. (In a browser: tests/app/viewer/report_page_browser_test.cpp.)
+// analysis's distance; the display meshes through a cache are those made without one, from a
+// hit too. (In a browser: tests/app/viewer/report_page_browser_test.cpp.)
 #include "report/report_viewer.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/case_config.h"
@@ -87,7 +90,7 @@ TEST(ReportViewerTest, NumbersListTheContactThenEveryRelationship) {
 TEST(ReportViewerTest, ViewDistancesAreTheAnalysisAtTheKeptVertices) {
   ViewerCase& c = Case();
   const app::JawPair& jaws = c.session->jaws();
-  const app::DisplayJaws display = app::DecimateJawsForViewer(jaws, kDisplayTriangles);
+  const app::DisplayJaws display = app::DecimateJawsForViewer(jaws, nullptr, kDisplayTriangles);
   ASSERT_LE(display.lower.mesh.num_triangles(), kDisplayTriangles);
   ASSERT_LE(display.upper.mesh.num_triangles(), kDisplayTriangles);
   const app::ViewerProposal p = app::ViewerProposalOf(display, c.analysis, "x", "{}");
@@ -158,6 +161,41 @@ TEST(ReportViewerTest, ReportFilesHoldTheViewAndColouredMeshesOfBothJaws) {
     }
     EXPECT_EQ(io::LoadMesh(tmp / jaw.file).num_triangles(), jaw.mesh.num_triangles()) << jaw.file;
   }
+}
+
+TEST(ReportViewerTest, DisplayMeshesThroughACacheAreThoseMadeWithout) {
+  ViewerCase& c = Case();
+  const app::JawPair& jaws = c.session->jaws();
+  const app::DisplayJaws made = app::DecimateJawsForViewer(jaws, nullptr, kDisplayTriangles);
+  TempDir dir;
+  std::ostringstream warnings;
+  app::OracleCacheSettings settings;
+  settings.folder = dir.path();
+  app::OracleCache cache(settings, &warnings);
+  for (int run = 0; run < 2; ++run) {  // a miss that saves, then a hit
+    const app::DisplayJaws got = app::DecimateJawsForViewer(jaws, &cache, kDisplayTriangles);
+    for (const auto& [a, b] :
+         {std::pair(&made.lower, &got.lower), std::pair(&made.upper, &got.upper)}) {
+      EXPECT_EQ(a->mesh.vertices, b->mesh.vertices) << run;
+      EXPECT_EQ(a->mesh.triangles, b->mesh.triangles) << run;
+      EXPECT_EQ(a->mesh.face_normals, b->mesh.face_normals) << run;
+      EXPECT_EQ(a->mesh.triangle_part, b->mesh.triangle_part) << run;
+      EXPECT_EQ(a->source_vertex, b->source_vertex) << run;
+      EXPECT_EQ(a->cell_mm, b->cell_mm) << run;
+    }
+  }
+  // Both jaws' entries were written, and read back on the second run (not made again: an
+  // entry made to differ is what a third run gets).
+  const std::string lower_entry = app::ByteEntryName(
+      app::kDisplayEntryKind, io::DecimationKey(*jaws.lower_L, {kDisplayTriangles}));
+  ASSERT_TRUE(std::filesystem::exists(dir / lower_entry));
+  io::DecimationResult marked = made.lower;
+  marked.cell_mm += 1.0;
+  cache.PutBytes(app::kDisplayEntryKind, io::DecimationKey(*jaws.lower_L, {kDisplayTriangles}),
+                 io::EncodeDecimation(marked));
+  EXPECT_EQ(app::DecimateJawsForViewer(jaws, &cache, kDisplayTriangles).lower.cell_mm,
+            marked.cell_mm);
+  EXPECT_TRUE(warnings.str().empty()) << warnings.str();
 }
 
 }  // namespace

@@ -24,6 +24,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "occlude/io/triangle_mesh.h"
@@ -55,5 +57,17 @@ DecimationResult DecimateForDisplay(const TriangleMesh& mesh, const DecimationRe
 /// value per input vertex, else std::invalid_argument naming "per_input_vertex").
 std::vector<float> ValuesAtKeptVertices(const DecimationResult& result,
                                         const std::vector<float>& per_input_vertex);
+
+/// The key of DecimateForDisplay(mesh, request) for a cache: the mesh's content hash, the
+/// request, the encoding's version and a hash of the decimation's code (made by the build).
+std::uint64_t DecimationKey(const TriangleMesh& mesh, const DecimationRequest& request);
+
+/// `result`, of DecimateForDisplay(mesh, ...), as bytes that give it back exactly with the same
+/// `mesh`: the kept vertices' input indices, the triangles and their parts, the cell (the
+/// coordinates are the input's vertices, the parts the input's, the normals recomputed).
+std::string EncodeDecimation(const DecimationResult& result);
+/// The result EncodeDecimation wrote, for `mesh`; throws std::runtime_error when the bytes are
+/// malformed or do not fit `mesh` (an index out of range, an inconsistent mesh).
+DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& mesh);
 
 }  // namespace occlude::io
