@@ -228,6 +228,17 @@ BrickMap OccupiedCells(const VoxelGrid& grid, int level, std::uint8_t cap) {
 
 DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
                                    const std::vector<int>& levels, int threads) {
+  return Build(grid, max_voxels, levels, threads, nullptr);
+}
+
+DistanceBound DistanceBound::Build(VoxelGrid&& grid, int max_voxels, const std::vector<int>& levels,
+                                   int threads) {
+  return Build(grid, max_voxels, levels, threads, &grid);
+}
+
+DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
+                                   const std::vector<int>& levels, int threads,
+                                   VoxelGrid* release) {
   if (max_voxels < 1 || max_voxels > kMaxVoxels) {
     throw std::invalid_argument("DistanceBound::Build: max_voxels must be in [1, " +
                                 std::to_string(kMaxVoxels) + "]");
@@ -240,9 +251,23 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   const int workers = detail::ResolveThreads(threads);
   DistanceBound out;
   out.origin_ = grid.origin_F;
-  if (grid.surface_keys.empty() || !(grid.voxel_size_mm > 0.0)) return out;
-  for (const int level : levels)
-    out.levels_.push_back(BuildLevel(grid, max_voxels, level, workers));
+  const double voxel_mm = grid.voxel_size_mm;
+  if (grid.surface_keys.empty() || !(voxel_mm > 0.0)) return out;
+  // Every level's occupied cells first: then the keys (the largest input) can go before the
+  // passes, the build's largest part.
+  const auto cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
+  std::vector<BrickMap> occupied;
+  for (const int level : levels) occupied.push_back(OccupiedCells(grid, level, cap));
+  if (release != nullptr) *release = VoxelGrid();
+  std::vector<int> t;  // per-axis term for |d| = 0..max_voxels
+  for (int d = 0; d <= max_voxels; ++d) t.push_back(d == 0 ? 0 : (2 * d - 1) * (2 * d - 1));
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    BrickMap field = std::move(occupied[l]);
+    for (int axis = 0; axis < 3; ++axis) field = Pass(field, axis, t, workers);
+    // Every brick left holds some value below the cap (the others read as the cap anyway).
+    out.levels_.push_back(LevelOf(std::move(field.index), std::move(field.bricks), field.coords,
+                                  voxel_mm, cap, levels[l]));
+  }
   out.finest_level_ = levels.empty() ? 0 : levels[0];
   for (std::size_t l = 0; l < out.levels_.size(); ++l) {
     out.levels_[l].shift = levels[l] - levels[0];
@@ -251,13 +276,14 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   return out;
 }
 
-DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_voxels, int level,
-                                               int threads) {
+DistanceBound::Level DistanceBound::LevelOf(detail::KeyIndexHash index, std::vector<Brick> bricks,
+                                            const std::vector<Eigen::Vector3i>& coords,
+                                            double voxel_mm, std::uint8_t cap, int level) {
   Level out;
-  out.s = std::ldexp(grid.voxel_size_mm, level);
+  out.s = std::ldexp(voxel_mm, level);
   out.inv_s = 1.0 / out.s;
   out.s2 = out.s * out.s;
-  out.cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
+  out.cap = cap;
   // Rounded down so that the bound never exceeds the exact distance.
   for (int q = 0; q < 256; ++q) {
     out.m_mm[static_cast<std::size_t>(q)] =
@@ -265,16 +291,10 @@ DistanceBound::Level DistanceBound::BuildLevel(const VoxelGrid& grid, int max_vo
         (1.0 - 1e-12);
   }
   out.cap_mm = out.m_mm[out.cap];
-
-  std::vector<int> t;  // per-axis term for |d| = 0..max_voxels
-  for (int d = 0; d <= max_voxels; ++d) t.push_back(d == 0 ? 0 : (2 * d - 1) * (2 * d - 1));
-  BrickMap field = OccupiedCells(grid, level, out.cap);
-  for (int axis = 0; axis < 3; ++axis) field = Pass(field, axis, t, threads);
-  // Every brick left holds some value below the cap (the others read as the cap anyway).
-  out.index = std::move(field.index);
-  out.bricks = std::move(field.bricks);
+  out.index = std::move(index);
+  out.bricks = std::move(bricks);
   out.bricks.shrink_to_fit();
-  out.BuildTable(field.coords);
+  out.BuildTable(coords);
   return out;
 }
 

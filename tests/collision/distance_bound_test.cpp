@@ -79,6 +79,26 @@ TEST(DistanceBoundTest, NeverAboveTheExactDistanceAndExactAtCellCentres) {
   EXPECT_THROW(DistanceBound::Build(grid, 3, {2, 1}), std::invalid_argument);
 }
 
+// A grid handed over (the oracle's field bound) gives the same bound, reads alike everywhere,
+// and its keys are gone afterwards.
+TEST(DistanceBoundTest, AConsumedGridGivesTheSameBound) {
+  io::TriangleMesh mesh = test::MakeSphere(V(0, 0, 0), 1.2, 12, 18);
+  mesh.Append(test::MakeBox(V(0.9, -0.3, -0.2), V(2.0, 0.4, 0.5)));
+  const VoxelGrid grid = Grid(mesh, 0.1);
+  const DistanceBound kept = DistanceBound::Build(grid, 5, {0, 1, 2, 4});
+  VoxelGrid handed = grid;
+  const DistanceBound consumed = DistanceBound::Build(std::move(handed), 5, {0, 1, 2, 4});
+  EXPECT_TRUE(handed.surface_keys.empty());  // NOLINT(bugprone-use-after-move): it is reset
+  EXPECT_EQ(kept.MemoryBytes(), consumed.MemoryBytes());
+  EXPECT_EQ(kept.max_mm(), consumed.max_mm());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 2000; ++i) {
+    const V p(u(rng), u(rng), u(rng));
+    ASSERT_EQ(kept.LowerBound(p), consumed.LowerBound(p)) << p.transpose();
+  }
+}
+
 TEST(DistanceBoundTest, OneSidedCellsCoverEverySurfacePointWithinReach) {
   const io::TriangleMesh sphere = test::MakeSphere({0, 0, 0}, 1.0, 10, 14);
   const io::TriangleMesh box = test::MakeBox({-0.6, -0.4, -0.5}, {0.7, 0.5, 0.3});

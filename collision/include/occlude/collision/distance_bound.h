@@ -73,6 +73,10 @@ class DistanceBound {
   /// [0, 20] or threads is negative.
   static DistanceBound Build(const VoxelGrid& grid, int max_voxels = kMaxVoxels,
                              const std::vector<int>& levels = DefaultLevels(), int threads = 1);
+  /// The same from a grid it may consume: its voxel keys are freed once every level's cells are
+  /// taken from them, before the distance passes (a smaller peak for a large grid).
+  static DistanceBound Build(VoxelGrid&& grid, int max_voxels = kMaxVoxels,
+                             const std::vector<int>& levels = DefaultLevels(), int threads = 1);
   /// The levels of a sphere tree's bound: voxels, 2 and 8 voxels.
   static std::vector<int> DefaultLevels() { return {0, 1, 3}; }
 
@@ -182,7 +186,14 @@ class DistanceBound {
     /// cell's centre; false when q is out of the key range or NaN.
     bool CellQ(const Eigen::Vector3d& q, std::uint8_t* value, Eigen::Vector3d* offset) const;
   };
-  static Level BuildLevel(const VoxelGrid& grid, int max_voxels, int level, int threads);
+  /// A level of cells `level` levels above the voxels from its capped values (bricks and
+  /// their index and coordinates).
+  static Level LevelOf(detail::KeyIndexHash index, std::vector<Brick> bricks,
+                       const std::vector<Eigen::Vector3i>& coords, double voxel_mm,
+                       std::uint8_t cap, int level);
+  /// Build, freeing `release` (the grid itself, or null) once its keys are read.
+  static DistanceBound Build(const VoxelGrid& grid, int max_voxels, const std::vector<int>& levels,
+                             int threads, VoxelGrid* release);
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::vector<Level> levels_;  ///< finest first
