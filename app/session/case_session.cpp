@@ -10,6 +10,7 @@
 #include <malloc.h>
 #endif
 
+#include "base/tasks.h"
 #include "base/user_error.h"
 #include "occlude/collision/arch_frame.h"
 #include "occlude/collision/region_of_interest.h"
@@ -138,20 +139,29 @@ CaseSession::CaseSession(const CaseConfig& config, double memory_budget_mb)
            *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity(), lower_name, upper_name)) {
     std::cerr << "occlude: warning: " << w << "\n";
   }
-  CheckMemory(
-      {config_.file.string(),
-       "the contact oracles and the map fields",
-       "accuracy.voxel_mm",
-       5.0,
-       "decimate the meshes or raise accuracy.sample_spacing_mm",
-       {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
-      [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
-      config_.VoxelSizeMm(), ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
+  // The memory check and the arch frame read the meshes alone: both at once (the check's error,
+  // if any, first).
+  RunTasks({[&] {
+              CheckMemory(
+                  {config_.file.string(),
+                   "the contact oracles and the map fields",
+                   "accuracy.voxel_mm",
+                   5.0,
+                   "decimate the meshes or raise accuracy.sample_spacing_mm",
+                   {ExtentOf(lower_name, *jaws_.lower_L), ExtentOf(upper_name, *jaws_.upper_U)}},
+                  [&](double voxel_mm) { return EstimateSessionMemory(config_, jaws_, voxel_mm); },
+                  config_.VoxelSizeMm(),
+                  ResolveMemoryBudget(memory_budget_mb, config_.memory_budget_mb));
+            },
+            [&] {
+              StepClock arch_clock;
+              arch_clock.Start("estimated the arch frame");
+              arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U,
+                                    Eigen::Isometry3d::Identity());
+              pivot_L_ = config_.start.pivot_mm.value_or(collision::UpperOcclusalCentre(
+                  *jaws_.upper_U, Eigen::Isometry3d::Identity(), arch_.occlusal_L));
+            }});
   std::cerr << "occlude: " << config_.resolution.Describe() << "\n";
-  clock.Start("estimated the arch frame");
-  arch_ = CaseArchFrame(config_, *jaws_.lower_L, *jaws_.upper_U, Eigen::Isometry3d::Identity());
-  pivot_L_ = config_.start.pivot_mm.value_or(collision::UpperOcclusalCentre(
-      *jaws_.upper_U, Eigen::Isometry3d::Identity(), arch_.occlusal_L));
 }
 
 void CaseSession::UseArchFrame(const collision::ArchFrame& arch) {
