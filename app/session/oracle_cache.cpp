@@ -146,6 +146,11 @@ void OracleCache::Warn(const std::string& line, bool* once) {
   *warnings_ << "occlude: warning: " << line << "\n";
 }
 
+void OracleCache::Say(const std::string& line) {
+  const std::lock_guard<std::mutex> lock(warn_mutex_);
+  if (warnings_ != nullptr) *warnings_ << line << "\n";
+}
+
 std::unique_ptr<collision::JawOracle> OracleCache::Get(
     std::shared_ptr<const io::TriangleMesh> lower_L,
     std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
@@ -166,9 +171,7 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
       last_ = OracleCacheOutcome::kHit;
       return oracle;
     } catch (const collision::OracleFileError& e) {
-      if (warnings_ != nullptr) {
-        *warnings_ << "occlude: cache entry not used (" << e.what() << "); rebuilding it\n";
-      }
+      Say(std::string("occlude: cache entry not used (") + e.what() + "); rebuilding it");
       last_ = OracleCacheOutcome::kRebuilt;
     }
   }
@@ -183,9 +186,7 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
         collision::LoadOracleFile(file, lower_L, upper_U, options));
   } catch (const collision::OracleFileError& e) {
     // Only if another run removed or replaced the entry meanwhile: build it again, uncached.
-    if (warnings_ != nullptr) {
-      *warnings_ << "occlude: cache entry not read back (" << e.what() << "); building it again\n";
-    }
+    Say(std::string("occlude: cache entry not read back (") + e.what() + "); building it again");
     return build();
   }
 }

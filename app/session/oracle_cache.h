@@ -81,7 +81,7 @@ class OracleCache {
   std::filesystem::path folder_;
   double max_mb_;
   std::ostream* warnings_;
-  std::mutex warn_mutex_;  ///< Warn may be called from the threads of GetBytes and PutBytes
+  std::mutex warn_mutex_;  ///< lines come from the threads of GetBytes and PutBytes too
   bool warned_write_ = false;
   OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
   /// Writes the entry (then evicts to the limit); false, with a warning, when it cannot.
@@ -89,6 +89,7 @@ class OracleCache {
   /// One line on the warning stream; with `once`, only the first time.
   void Warn(const std::string& line, bool* once);
   void WarnNotWritten(const std::string& why);  ///< once per cache
+  void Say(const std::string& line);            ///< one line as it is
 };
 
 /// What `make()` gives, kept in `cache` as a byte entry of `kind` and `key`: decoded from the
