@@ -257,6 +257,7 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   // passes, the build's largest part.
   const auto cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
   std::vector<BrickMap> occupied;
+  occupied.reserve(levels.size());
   for (const int level : levels) occupied.push_back(OccupiedCells(grid, level, cap));
   if (release != nullptr) *release = VoxelGrid();
   std::vector<int> t;  // per-axis term for |d| = 0..max_voxels
