@@ -378,7 +378,7 @@ DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& me
   out.error_bound_mm = header.error_bound_mm;
   const char* at = bytes.data() + sizeof header;
   out.source_vertex.resize(header.vertices);
-  std::memcpy(out.source_vertex.data(), at, 4 * header.vertices);
+  if (header.vertices > 0) std::memcpy(out.source_vertex.data(), at, 4 * header.vertices);
   at += 4 * header.vertices;
   out.mesh.triangles.resize(header.triangles);
   for (Eigen::Vector3i& t : out.mesh.triangles) {
@@ -386,7 +386,8 @@ DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& me
     at += 12;
   }
   out.mesh.triangle_part.resize(header.triangles);
-  std::memcpy(out.mesh.triangle_part.data(), at, 4 * header.triangles);
+  if (header.triangles > 0)  // (data() of an empty vector may be null)
+    std::memcpy(out.mesh.triangle_part.data(), at, 4 * header.triangles);
   out.mesh.vertices.reserve(header.vertices);
   for (const std::int32_t v : out.source_vertex) {
     if (v < 0 || static_cast<std::size_t>(v) >= mesh.num_vertices())

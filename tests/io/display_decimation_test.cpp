@@ -168,6 +168,11 @@ TEST(DisplayDecimationTest, MalformedBytesOrAnotherMeshThrow) {
         vertex, corner, part}) {
     EXPECT_THROW(DecodeDecimation(bytes, mesh), std::runtime_error) << bytes.size();
   }
+  // An empty result (of an empty mesh) round-trips too.
+  const DecimationResult empty =
+      DecodeDecimation(EncodeDecimation(DecimationResult{}), TriangleMesh{});
+  EXPECT_TRUE(empty.mesh.empty());
+  EXPECT_TRUE(empty.source_vertex.empty());
   // The bytes of one mesh for a smaller one: its kept vertices are not all there.
   const TriangleMesh other = test::MakeBox(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
   EXPECT_THROW(DecodeDecimation(good, other), std::runtime_error);
