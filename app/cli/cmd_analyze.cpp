@@ -114,8 +114,7 @@ void AnalyzeCaseFolder(const AnalyzeArgs& args, double start) {
       landmarks ? ReadGivenLandmarks(*landmarks) : std::vector<io::Landmark>{};
   const JawPair pair = LoadCaseFolder(args.case_dir);
   PrepareOutputDir(args.out);
-  const CaseConfig defaults = WithCacheArgs(CaseConfig{}, args.cache);
-  OracleCache cache({defaults.cache_enabled, defaults.cache_folder, defaults.cache_mb}, &std::cerr);
+  OracleCache cache(OracleCacheSettings{!args.cache.off, args.cache.folder}, &std::cerr);
   const CaseAnalysis analysis = AnalyzeCase(pair, given, &cache);
   AnalysisInputs in;
   in.case_name = pair.name;

@@ -18,7 +18,7 @@ io::DecimationResult DecimateForViewer(const io::TriangleMesh& mesh, OracleCache
   // A mesh within the budget is returned as it is: nothing worth keeping.
   if (mesh.num_triangles() <= max_triangles) cache = nullptr;
   return MadeOrCached(
-      cache, kDisplayEntryKind, cache != nullptr ? io::DecimationKey(mesh, request) : 0,
+      cache, kDisplayEntryKind, [&] { return io::DecimationKey(mesh, request); },
       [&] { return io::DecimateForDisplay(mesh, request); }, io::EncodeDecimation,
       [&](std::string_view bytes) { return io::DecodeDecimation(bytes, mesh); });
 }

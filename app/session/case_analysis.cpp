@@ -15,7 +15,7 @@ namespace occlude::app {
 analysis::ArchAnalysis AnalyzeJaw(const io::TriangleMesh& mesh, io::Jaw jaw, OracleCache* cache) {
   const analysis::ArchAnalysisOptions options;
   return MadeOrCached(
-      cache, kArchAnalysisEntryKind, ArchAnalysisKey(mesh, jaw, options),
+      cache, kArchAnalysisEntryKind, [&] { return ArchAnalysisKey(mesh, jaw, options); },
       [&] { return analysis::AnalyzeArch(mesh, jaw, options); }, EncodeArchAnalysis,
       DecodeArchAnalysis);
 }

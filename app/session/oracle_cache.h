@@ -92,13 +92,15 @@ class OracleCache {
   void Say(const std::string& line);            ///< one line as it is
 };
 
-/// What `make()` gives, kept in `cache` as a byte entry of `kind` and `key`: decoded from the
-/// entry when there is one and it decodes (decode throws std::runtime_error otherwise), else
-/// made and saved (encode(made) -> bytes). A null cache, or one that is off: made.
-template <typename Make, typename Encode, typename Decode>
-auto MadeOrCached(OracleCache* cache, std::string_view kind, std::uint64_t key, Make&& make,
+/// What `make()` gives, kept in `cache` as a byte entry of `kind` and key_of(): decoded from
+/// the entry when there is one and it decodes (decode throws std::runtime_error otherwise), else
+/// made and saved (encode(made) -> bytes). A null cache, or one that is off: made (and the key,
+/// a hash of the inputs, never computed).
+template <typename Key, typename Make, typename Encode, typename Decode>
+auto MadeOrCached(OracleCache* cache, std::string_view kind, Key&& key_of, Make&& make,
                   Encode&& encode, Decode&& decode) -> decltype(make()) {
   if (cache == nullptr || cache->folder().empty()) return make();
+  const std::uint64_t key = key_of();
   if (const std::optional<std::string> bytes = cache->GetBytes(kind, key)) {
     try {
       return decode(*bytes);

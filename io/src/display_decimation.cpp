@@ -329,6 +329,7 @@ struct DecimationHeader {
   double error_bound_mm = 0.0;
 };
 static_assert(sizeof(DecimationHeader) == 40, "no padding in the header");
+static_assert(sizeof(Eigen::Vector3i) == 12, "triangles are copied as arrays of 3 ints");
 
 template <typename T>
 void Append(std::string* out, const T* data, std::size_t count) {
@@ -357,7 +358,7 @@ std::string EncodeDecimation(const DecimationResult& result) {
   out.reserve(sizeof header + 4 * header.vertices + 16 * header.triangles);
   Append(&out, &header, 1);
   Append(&out, result.source_vertex.data(), result.source_vertex.size());
-  for (const Eigen::Vector3i& t : result.mesh.triangles) Append(&out, t.data(), 3);
+  Append(&out, result.mesh.triangles.data(), result.mesh.triangles.size());
   Append(&out, result.mesh.triangle_part.data(), result.mesh.triangle_part.size());
   return out;
 }
@@ -378,16 +379,15 @@ DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& me
   out.error_bound_mm = header.error_bound_mm;
   const char* at = bytes.data() + sizeof header;
   out.source_vertex.resize(header.vertices);
+  // (No memcpy into an empty vector: its data() may be null.)
   if (header.vertices > 0) std::memcpy(out.source_vertex.data(), at, 4 * header.vertices);
   at += 4 * header.vertices;
   out.mesh.triangles.resize(header.triangles);
-  for (Eigen::Vector3i& t : out.mesh.triangles) {
-    std::memcpy(t.data(), at, 12);
-    at += 12;
-  }
+  if (header.triangles > 0)  // the bytes of Vector3i are its three ints
+    std::memcpy(static_cast<void*>(out.mesh.triangles.data()), at, 12 * header.triangles);
+  at += 12 * header.triangles;
   out.mesh.triangle_part.resize(header.triangles);
-  if (header.triangles > 0)  // (data() of an empty vector may be null)
-    std::memcpy(out.mesh.triangle_part.data(), at, 4 * header.triangles);
+  if (header.triangles > 0) std::memcpy(out.mesh.triangle_part.data(), at, 4 * header.triangles);
   out.mesh.vertices.reserve(header.vertices);
   for (const std::int32_t v : out.source_vertex) {
     if (v < 0 || static_cast<std::size_t>(v) >= mesh.num_vertices())
@@ -395,14 +395,11 @@ DecimationResult DecodeDecimation(std::string_view bytes, const TriangleMesh& me
     out.mesh.vertices.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
   }
   out.mesh.parts = mesh.parts;
-  const auto nv = static_cast<int>(header.vertices);
-  for (const Eigen::Vector3i& t : out.mesh.triangles) {  // before the normals read the corners
-    if ((t.array() < 0).any() || (t.array() >= nv).any())
-      throw std::runtime_error("decimation: a triangle indexes a vertex it does not keep");
-  }
-  out.mesh.ComputeFaceNormals();
+  // Indices and parts checked before the normals read the corners.
+  out.mesh.face_normals.assign(header.triangles, Eigen::Vector3d::Zero());
   if (const std::string error = out.mesh.ConsistencyError(); !error.empty())
     throw std::runtime_error("decimation: " + error);
+  out.mesh.ComputeFaceNormals();
   return out;
 }
 
