@@ -174,8 +174,7 @@ RefineOutcome Refine(CaseSession& session, const Eigen::Isometry3d& base) {
   request.solver = config.solver.name == "nlopt-local" ? planner::SolverKind::kNloptLocal
                                                        : planner::SolverKind::kCeres;
   request.num_starts = 1;
-  request.max_proposals = 1;
-  request.num_threads = 1;
+  request.max_proposals = 1;  // the one start's loops over samples use solver.threads
   r.held = RefineHeldDofs(config);
   HoldDofs(config, r.held, X_adjusted, session.pivot_L(), &request);
   // Locally, the finest oracle alone (built on first use, kept by --watch).

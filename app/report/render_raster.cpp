@@ -46,6 +46,22 @@ bool ClipSpan(const Weight& w, double py, double* lo, double* hi) {
   return *lo <= *hi;
 }
 
+// How far (pixels) a span's end found by ClipSpan may lie from where the per-pixel weights
+// (ua, ub and uc = 1 - ua - ub, summed in another order) change sign: their rounding, bounded
+// far above by 1e-9 of each weight's terms over its slope along the row; at most a pixel (a
+// weight all but constant along rows, whose end the division cannot place).
+double SpanSlack(const Weight& wa, const Weight& wb, const Weight& wc, int width, int height) {
+  const auto terms = [&](const Weight& w) {
+    return std::abs(w.x) * (width + 1.0) + std::abs(w.y) * (height + 1.0) + std::abs(w.k);
+  };
+  const double ta = terms(wa), tb = terms(wb);
+  double slack = 0.0;
+  for (const auto& [w, t] : {std::pair{wa, ta}, std::pair{wb, tb}, std::pair{wc, ta + tb + 1.0}}) {
+    if (w.x != 0.0) slack = std::max(slack, 1e-9 * t / std::abs(w.x));
+  }
+  return std::min(1.0, slack);
+}
+
 void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool back_face,
                   const Eigen::Vector3f& light, std::int16_t id, GBuffer* g) {
   const double area = Edge(a, b, c.x, c.y);
@@ -54,19 +70,20 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
   const Weight wa = OppositeWeight(b, c, inv_area);
   const Weight wb = OppositeWeight(c, a, inv_area);
   const Weight wc{-(wa.x + wb.x), -(wa.y + wb.y), 1.0 - wa.k - wb.k};
+  const double slack = SpanSlack(wa, wb, wc, g->width, g->height);
   const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
   const int x1 = std::min(g->width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
   const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
   const int y1 = std::min(g->height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
   for (int y = y0; y <= y1; ++y) {
     const double py = y + 0.5;
-    // The row's pixel centres inside the triangle, found from its three edges and widened by a
-    // pixel each way; the weights' signs below decide each pixel.
+    // The row's pixel centres inside the triangle, found from its three edges and widened by
+    // the slack each way; the weights' signs below decide each pixel.
     double lo = x0 + 0.5, hi = x1 + 0.5;
     if (!ClipSpan(wa, py, &lo, &hi) || !ClipSpan(wb, py, &lo, &hi) || !ClipSpan(wc, py, &lo, &hi))
       continue;
-    const int xs = std::max(x0, static_cast<int>(std::ceil(lo - 0.5)) - 1);
-    const int xe = std::min(x1, static_cast<int>(std::floor(hi - 0.5)) + 1);
+    const int xs = std::max(x0, static_cast<int>(std::ceil(lo - 0.5 - slack)));
+    const int xe = std::min(x1, static_cast<int>(std::floor(hi - 0.5 + slack)));
     for (int x = xs; x <= xe; ++x) {
       const double px = x + 0.5;
       const double ua = wa.At(px, py);
@@ -101,8 +118,13 @@ bool IsBackFace(const Vertex2& a, const Vertex2& b, const Vertex2& c) {
 // x 16 pixels, row-major, by the triangle's first vertex; the mesh's order within a tile), so
 // that consecutive triangles touch pixels already in the cache. A pixel's nearest surface does
 // not depend on the order (only exact ties in depth would).
-std::vector<std::size_t> DrawOrder(const io::TriangleMesh& mesh, const std::vector<Vertex2>& v,
-                                   int width, int height) {
+struct DrawOrder {
+  std::vector<std::size_t> triangles;  ///< front faces, then back faces
+  std::size_t front = 0;               ///< how many front faces lead
+};
+
+DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2>& v, int width,
+                         int height) {
   constexpr int kTile = 16;
   const int tiles_x = width / kTile + 1;
   const int tiles_y = height / kTile + 1;
@@ -121,10 +143,59 @@ std::vector<std::size_t> DrawOrder(const io::TriangleMesh& mesh, const std::vect
     ++start[key[t] + 1];
   }
   for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
-  std::vector<std::size_t> order(key.size());
-  for (std::size_t t = 0; t < key.size(); ++t) order[start[key[t]]++] = t;
+  DrawOrder order;
+  order.front = start[tiles];
+  order.triangles.resize(key.size());
+  for (std::size_t t = 0; t < key.size(); ++t) order.triangles[start[key[t]]++] = t;
   return order;
 }
+
+// The farthest depth drawn in each 8 x 8 block of pixels (infinity while a pixel of it is
+// empty): a triangle no nearer than that anywhere in its box would fail every depth test.
+// Made after a mesh's front faces, it is kept for its back faces (depths only decrease, so a
+// block's bound only grows stale on the safe side); most of them lie behind the front faces.
+class BlockDepthBound {
+ public:
+  static constexpr int kBlock = 8;
+
+  explicit BlockDepthBound(const GBuffer& g)
+      : blocks_x_((g.width + kBlock - 1) / kBlock),
+        far_(static_cast<std::size_t>(blocks_x_) *
+                 static_cast<std::size_t>((g.height + kBlock - 1) / kBlock),
+             -std::numeric_limits<float>::infinity()) {
+    for (int y = 0; y < g.height; ++y) {
+      float* row =
+          &far_[static_cast<std::size_t>(y / kBlock) * static_cast<std::size_t>(blocks_x_)];
+      const float* depth =
+          &g.depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width)];
+      for (int x = 0; x < g.width; ++x) row[x / kBlock] = std::max(row[x / kBlock], depth[x]);
+    }
+  }
+
+  /// True when every pixel DrawTriangle could test for (a, b, c) holds a surface nearer than
+  /// the triangle's nearest vertex (by a margin far above the rounding of interpolated depths).
+  bool Hides(const Vertex2& a, const Vertex2& b, const Vertex2& c, int width, int height) const {
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
+    const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
+    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
+    const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+    if (x0 > x1 || y0 > y1) return true;  // off the image: DrawTriangle tests no pixel
+    const double nearest = std::min({a.depth, b.depth, c.depth});
+    const double bound = nearest - 1e-6 * (1.0 + std::abs(nearest));
+    for (int by = y0 / kBlock; by <= y1 / kBlock; ++by) {
+      for (int bx = x0 / kBlock; bx <= x1 / kBlock; ++bx) {
+        const float far = far_[static_cast<std::size_t>(by) * static_cast<std::size_t>(blocks_x_) +
+                               static_cast<std::size_t>(bx)];
+        if (!(static_cast<double>(far) <= bound)) return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  int blocks_x_;
+  std::vector<float> far_;
+};
 
 }  // namespace
 
@@ -205,13 +276,20 @@ GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces) {
       v[i] = {px.x(), px.y(), local.Depth(p_L), s.vertex_values ? (*s.vertex_values)[i] : 0.0f,
               R * normals[i]};
     }
-    for (const std::size_t t : DrawOrder(mesh, v, g.width, g.height)) {
-      const auto& tri = mesh.triangles[t];
-      const Vertex2& a = v[static_cast<std::size_t>(tri[0])];
-      const Vertex2& b = v[static_cast<std::size_t>(tri[1])];
-      const Vertex2& c = v[static_cast<std::size_t>(tri[2])];
-      DrawTriangle(a, b, c, IsBackFace(a, b, c), light, static_cast<std::int16_t>(s.id), &g);
-    }
+    const DrawOrder order = OrderTriangles(mesh, v, g.width, g.height);
+    const auto draw = [&](std::size_t from, std::size_t to, const BlockDepthBound* bound) {
+      for (std::size_t k = from; k < to; ++k) {
+        const auto& tri = mesh.triangles[order.triangles[k]];
+        const Vertex2& a = v[static_cast<std::size_t>(tri[0])];
+        const Vertex2& b = v[static_cast<std::size_t>(tri[1])];
+        const Vertex2& c = v[static_cast<std::size_t>(tri[2])];
+        if (bound != nullptr && bound->Hides(a, b, c, g.width, g.height)) continue;
+        DrawTriangle(a, b, c, IsBackFace(a, b, c), light, static_cast<std::int16_t>(s.id), &g);
+      }
+    };
+    draw(0, order.front, nullptr);
+    const BlockDepthBound bound(g);
+    draw(order.front, order.triangles.size(), &bound);
   }
   return g;
 }

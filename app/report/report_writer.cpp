@@ -15,7 +15,8 @@
 namespace occlude::app {
 namespace {
 
-// The 3D view section of report.html: the view's poses, or the analysis's pose alone.
+// The 3D view section of report.html: the view's poses, or the analysis's pose alone; its
+// display meshes decimated here (or read from the cache) when the view brings none.
 std::string ReportViewerHtml(const CaseSession& session, const ReportAnalysis& analysis,
                              const ReportView& view) {
   DisplayJaws own;
@@ -50,29 +51,6 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
                                config.report.map_penetration_from_mm};
   const int w = config.report.image_width_px;
   std::string png[4];
-  // The 3D view's display meshes, when the view brings none, are decimated beside the images.
-  ReportView own_view = view;
-  DisplayJaws decimated;
-  {
-    // Independent tasks on two threads, the slowest first (a side view rasterizes both whole
-    // jaws, the decimation reads both, a map one jaw's occlusal side).
-    std::vector<std::function<void()>> tasks = {
-        [&] { png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
-        [&] {
-          png[3] = EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
-        },
-        [&] { png[0] = EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image); },
-        [&] {
-          png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image);
-        }};
-    if (view.display == nullptr) {
-      tasks.insert(tasks.begin() + 2,
-                   [&] { decimated = DecimateJawsForViewer(jaws, session.cache().get()); });
-      own_view.display = &decimated;
-    }
-    RunTasks(tasks);
-  }
-  analysis.timings_s.emplace_back("render", NowSeconds() - t0);
   ReportInputs in;
   in.config = &config;
   in.jaws = &jaws;
@@ -80,9 +58,27 @@ ReportFiles MakeReportFiles(CaseSession& session, ReportAnalysis& analysis,
   in.pose_source = pose_source;
   in.search_json = search_json;
   in.search_html = search_html;
-  const double t_view = NowSeconds();
-  in.viewer_html = ReportViewerHtml(session, analysis, own_view);
-  analysis.timings_s.emplace_back("3D view", NowSeconds() - t_view);
+  double view_s = 0.0;
+  {
+    // Independent tasks on two threads, the slowest first (a side view rasterizes both whole
+    // jaws, a map one jaw's occlusal side; the 3D view decimates both jaws when the caller
+    // brings no display meshes, else only writes them out).
+    RunTasks({
+        [&] { png[2] = EncodePng(RenderSideView(SideView::kFrontal, jaws, analysis, scale, w)); },
+        [&] {
+          png[3] = EncodePng(RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w));
+        },
+        [&] {
+          const double t_view = NowSeconds();
+          in.viewer_html = ReportViewerHtml(session, analysis, view);
+          view_s = NowSeconds() - t_view;
+        },
+        [&] { png[0] = EncodePng(RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image); },
+        [&] { png[1] = EncodePng(RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image); },
+    });
+  }
+  analysis.timings_s.emplace_back("render (pictures and 3D view, two threads)", NowSeconds() - t0);
+  analysis.timings_s.emplace_back("3D view", view_s);
   in.pictures = {{"Lower arch, occlusal contact map", png[0], "lower_map.png"},
                  {"Upper arch, occlusal contact map", png[1], "upper_map.png"},
                  {"Frontal view", png[2], "frontal.png"},

@@ -145,9 +145,9 @@ Candidates EachStart(const SearchContext& c, const std::vector<Vector6d>& starts
       ++tracker->skipped;
       return;
     }
-    const double t0 = CpuSeconds();
+    const double t0 = JobCpuSeconds();
     all[i] = Finish(c, static_cast<int>(i), SafeChain(c, starts[i], 0, last));
-    all[i].cpu_seconds = CpuSeconds() - t0;
+    all[i].cpu_seconds = JobCpuSeconds() - t0;
     ran[i] = 1;
     tracker->Done();
   });
@@ -181,12 +181,12 @@ CoarseRuns RunCoarse(const SearchContext& c, const std::vector<Vector6d>& starts
       ++tracker->skipped;
       return;
     }
-    const double t0 = CpuSeconds();
+    const double t0 = JobCpuSeconds();
     runs.result[i] = SafeChain(c, starts[i], 0, 0);
     runs.cost[i] =
         EvaluateSet(c.schedule->front(), c.sets.front(), PoseOf(problem, runs.result[i].x), problem)
             .seat_cost;
-    runs.cpu[i] = CpuSeconds() - t0;
+    runs.cpu[i] = JobCpuSeconds() - t0;
     runs.ran[i] = 1;
     tracker->Done();
   });
@@ -237,14 +237,14 @@ Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& s
   out.proposals.resize(kept.size());
   out.worker_cpu += ParallelFor(kept.size(), c.problem->request->num_threads, [&](std::size_t k) {
     const std::size_t i = kept[k];
-    const double t0 = CpuSeconds();
+    const double t0 = JobCpuSeconds();
     LocalResult fine = SafeChain(c, coarse.result[i].x, 1, last);
     if (fine.status == SolveStatus::kFailed)
       fine.message = coarse.result[i].message + "; " + fine.message;
     Proposal& p = out.proposals[k];
     p = Finish(c, static_cast<int>(i), fine);
     p.evaluations += coarse.result[i].evaluations;
-    p.cpu_seconds = coarse.cpu[i] + CpuSeconds() - t0;
+    p.cpu_seconds = coarse.cpu[i] + JobCpuSeconds() - t0;
     tracker->Done();
   });
   for (std::size_t k = 0; k < kept.size(); ++k) {

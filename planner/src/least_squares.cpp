@@ -80,10 +80,17 @@ const ResidualMemo::Sample& ResidualMemo::At(std::size_t i, const double* z, boo
   }
   Sample& s = samples_.at(i);
   if (s.point != point_ || (jacobians && !s.has_jacobians)) {
-    model_.Residuals(i, pose_, &s.hinge, &s.attraction, jacobians ? &s.j_hinge : nullptr,
-                     jacobians ? &s.j_attraction : nullptr);
-    s.point = point_;
-    s.has_jacobians = jacobians;
+    // Ceres evaluates every block at a point: every sample at once, on the job's threads.
+    ForBlocks(samples_.size(), kSamplesPerBlock, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        Sample& sk = samples_[k];
+        if (sk.point == point_ && (!jacobians || sk.has_jacobians)) continue;
+        model_.Residuals(k, pose_, &sk.hinge, &sk.attraction, jacobians ? &sk.j_hinge : nullptr,
+                         jacobians ? &sk.j_attraction : nullptr);
+        sk.point = point_;
+        sk.has_jacobians = jacobians;
+      }
+    });
   }
   return s;
 }
@@ -112,16 +119,20 @@ SurfaceResiduals::Impl::Impl(const OracleStage& stage_in, const detail::SampleSe
                              const Eigen::Vector3d& p_LPivot, const ResidualSettings& settings_in,
                              std::size_t max_samples, const std::vector<bool>* excluded)
     : stage(stage_in), X_ref(X_LU_ref), pivot(p_LPivot), settings(settings_in) {
+  std::vector<char> within(all.size(), 0);
+  detail::ForBlocks(all.size(), detail::kSamplesPerBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (excluded && (*excluded)[i]) continue;
+      double d = 0.0;
+      bool deep = false;
+      within[i] = detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d,
+                                        nullptr, &deep) &&
+                  d <= settings.range_mm;
+    }
+  });
   std::vector<std::size_t> near;
   for (std::size_t i = 0; i < all.size(); ++i) {
-    if (excluded && (*excluded)[i]) continue;
-    double d = 0.0;
-    bool deep = false;
-    if (detail::StageDistance(stage, X_LU_base * all.p_U[i], settings.range_mm, &d, nullptr,
-                              &deep) &&
-        d <= settings.range_mm) {
-      near.push_back(i);
-    }
+    if (within[i]) near.push_back(i);
   }
   const std::size_t stride =
       max_samples > 0 ? std::max<std::size_t>(1, (near.size() + max_samples - 1) / max_samples) : 1;

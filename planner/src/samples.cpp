@@ -13,6 +13,11 @@ namespace occlude::planner::detail {
 
 double CpuSeconds() { return ThreadCpuSeconds(); }
 
+InnerBudget& CurrentInnerBudget() {
+  thread_local InnerBudget budget;
+  return budget;
+}
+
 namespace {
 
 struct Cluster {

@@ -18,15 +18,13 @@
 #include <thread>
 #include <vector>
 
+#include "inner_threads.h"
 #include "occlude/planner/least_squares.h"
 #include "occlude/planner/plan.h"
 
 namespace occlude::planner::detail {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-/// Thread CPU time in seconds.
-double CpuSeconds();
 
 /// Upper samples in U: area-weighted centroids of the occlusal surface clustered on a grid.
 struct SampleSet {
@@ -51,6 +49,8 @@ double StageSpacing(const OracleStage& stage);
 /// like kSubVoxel). False when unknown; then *deep says whether p_L is in the lower's interior.
 bool StageDistance(const OracleStage& stage, const Eigen::Vector3d& p_L, double reach_mm, double* d,
                    Eigen::Vector3d* gradient, bool* deep);
+/// Samples per block when a loop over samples runs on a job's threads (ForBlocks).
+constexpr std::size_t kSamplesPerBlock = 512;
 
 /// Everything a solve needs besides the stage.
 struct Problem {
@@ -196,24 +196,31 @@ Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& s
                           std::size_t refine_count, Tracker* tracker);
 
 /// Runs job(i) for i in [0, n) on up to `threads` std::threads; the results land in slots
-/// indexed by i, so they do not depend on the thread count. Returns the CPU seconds of the
-/// threads other than the caller (the caller's own are on its clock).
+/// indexed by i, so they do not depend on the thread count. Each worker's jobs may use the
+/// threads the workers leave idle (InnerBudget: threads / workers each). Returns the CPU seconds
+/// of the threads other than the caller (the caller's own are on its clock), its jobs' helpers
+/// included.
 template <typename Job>
 double ParallelFor(std::size_t n, int threads, Job job) {
   std::atomic<std::size_t> next{0};
-  std::vector<double> cpu(static_cast<std::size_t>(std::max(1, threads)), 0.0);
+  const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
+  const int inner = std::max(1, threads / count);
+  std::vector<double> cpu(static_cast<std::size_t>(count), 0.0);
   auto worker = [&](int slot) {
+    InnerBudget& budget = CurrentInnerBudget();
+    const InnerBudget outer = budget;
+    budget = {inner, 0.0};
     const double t0 = CpuSeconds();
     for (std::size_t i = next++; i < n; i = next++) job(i);
-    cpu[static_cast<std::size_t>(slot)] = CpuSeconds() - t0;
+    cpu[static_cast<std::size_t>(slot)] = (slot == 0 ? 0.0 : CpuSeconds() - t0) + budget.helper_cpu;
+    budget = outer;
   };
-  const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
   std::vector<std::thread> pool;
   for (int t = 1; t < count; ++t) pool.emplace_back(worker, t);
   worker(0);
   for (auto& t : pool) t.join();
   double others = 0.0;
-  for (std::size_t t = 1; t < cpu.size(); ++t) others += cpu[t];
+  for (const double c : cpu) others += c;
   return others;
 }
 

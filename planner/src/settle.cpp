@@ -32,14 +32,25 @@ std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& sample
   std::vector<PenetratingSample> pen;
   std::vector<std::size_t> index;
   const double reach = std::max(SeatSettings(stage, *problem.request).window_mm, 0.5);
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
-    double d = 0.0;
-    bool deep = false;
-    if (StageDistance(stage, p_L, reach, &d, nullptr, &deep) ? d < 0.0 : deep) {
-      pen.push_back({p_L, deep ? stage.oracle->lower_sdf().band_mm() : -d, samples.area_mm2[i]});
-      index.push_back(i);
+  // Each sample's depth (NaN: not penetrating) on the job's threads, then the list in order.
+  std::vector<double> depth(samples.size());
+  ForBlocks(samples.size(), kSamplesPerBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      double d = 0.0;
+      bool deep = false;
+      const bool known = StageDistance(stage, X_LU * samples.p_U[i], reach, &d, nullptr, &deep);
+      const bool penetrating = known ? d < 0.0 : deep;
+      if (!penetrating) {
+        depth[i] = std::numeric_limits<double>::quiet_NaN();
+      } else {
+        depth[i] = deep ? stage.oracle->lower_sdf().band_mm() : -d;
+      }
     }
+  });
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (std::isnan(depth[i])) continue;
+    pen.push_back({X_LU * samples.p_U[i], depth[i], samples.area_mm2[i]});
+    index.push_back(i);
   }
   const std::vector<bool> member =
       SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, cap,
@@ -67,14 +78,19 @@ SetDistances MeasureSet(const OracleStage& stage, const SampleSet& samples,
   m.dist.resize(n);
   m.known.resize(n);
   m.deep.resize(n);
+  ForBlocks(n, kSamplesPerBlock, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      bool is_deep = false;
+      const bool known =
+          StageDistance(stage, X_LU * samples.p_U[i], reach_mm, &m.dist[i], nullptr, &is_deep);
+      m.known[i] = known ? 1 : 0;
+      m.deep[i] = is_deep ? 1 : 0;
+      if (!m.known[i]) m.dist[i] = is_deep ? deep_distance : window_mm;
+    }
+  });
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p_L = X_LU * samples.p_U[i];
-    bool is_deep = false;
-    m.known[i] = StageDistance(stage, p_L, reach_mm, &m.dist[i], nullptr, &is_deep) ? 1 : 0;
-    m.deep[i] = is_deep ? 1 : 0;
-    if (!m.known[i]) m.dist[i] = is_deep ? deep_distance : window_mm;
-    if (m.known[i] ? m.dist[i] < 0.0 : is_deep) {
-      m.pen.push_back({p_L, -m.dist[i], samples.area_mm2[i]});
+    if (m.known[i] ? m.dist[i] < 0.0 : m.deep[i] != 0) {
+      m.pen.push_back({X_LU * samples.p_U[i], -m.dist[i], samples.area_mm2[i]});
       m.pen_index.push_back(i);
     }
   }

@@ -223,6 +223,28 @@ TEST(PlanTest, CoarseToFineSameForOneAndTwoThreads) {
   EXPECT_EQ(one.total_evaluations, two.total_evaluations);
 }
 
+// One start (refine's case) spreads its loops over the samples on every thread (ForBlocks): the
+// same proposal, bit for bit, its evaluations and seat cost, from one thread and from two, for
+// each least-squares and settle path.
+TEST(PlanTest, OneStartSameForOneAndTwoThreads) {
+  for (const SolverKind kind : {SolverKind::kCeres, SolverKind::kCoarseToFine}) {
+    PlanRequest req = PerturbedRequest(kind, 1.0, 2.0, 1);
+    const PlanResult one = Plan(ScheduleFor(kind), req);
+    req.num_threads = 2;
+    const PlanResult two = Plan(ScheduleFor(kind), req);
+    ASSERT_EQ(one.proposals.size(), 1u) << ToString(kind);
+    ASSERT_EQ(two.proposals.size(), 1u) << ToString(kind);
+    const Proposal &a = one.proposals[0], &b = two.proposals[0];
+    EXPECT_TRUE(a.X_LU.isApprox(b.X_LU, 0.0)) << ToString(kind);
+    EXPECT_EQ(a.evaluations, b.evaluations) << ToString(kind);
+    EXPECT_EQ(a.seat_cost, b.seat_cost) << ToString(kind);
+    EXPECT_EQ(a.evaluation.contact_area_mm2, b.evaluation.contact_area_mm2) << ToString(kind);
+    EXPECT_EQ(a.status, b.status) << ToString(kind);
+    // The helpers' CPU is the plan's too.
+    EXPECT_GT(two.cpu_seconds, 0.0);
+  }
+}
+
 TEST(PlanTest, FarApartAndNestedStartsGiveFinitePoses) {
   const auto& c = Synthetic();
   for (const double offset : {6.0, -1.5}) {
