@@ -194,51 +194,66 @@ collision::RegionOfInterestRequest CaseSession::RegionRequest(double band_mm) co
   return SessionRegionRequest(config_, X_start, X_start * pivot_L_, band_mm);
 }
 
+CaseSession::StageInputs CaseSession::PrepareStage(std::size_t index) {
+  collision::OracleOptions base = SessionOracleBase(config_);
+  base.arch = arch_;
+  StageInputs in;
+  in.options = planner::StageOracleOptions(base, ScheduleVoxels(config_), index);
+  in.model = {in.options.voxel_size_mm, std::nullopt, 0, 0.0};
+  in.lower = jaws_.lower_L;
+  in.upper = jaws_.upper_U;
+  if (!config_.region_of_interest) return in;
+  double selector_seconds = 0.0;  // the bounds' share, counted with the first region
+  if (!region_) {
+    region_ = std::make_unique<collision::RegionSelector>(jaws_.lower_L, jaws_.upper_U,
+                                                          RegionRequest(0.0));
+    selector_seconds = region_->seconds();
+  }
+  const collision::RegionOfInterest roi = region_->Select(SessionReadRadiusMm(config_, in.options));
+  // A jaw that keeps nearly everything is modelled whole (the cut would save little and cost a
+  // copy of the mesh), and so is one that keeps nothing (jaws out of each other's reach: an
+  // oracle needs a surface).
+  auto pick = [](const collision::RegionMesh& sub,
+                 const std::shared_ptr<const io::TriangleMesh>& whole) {
+    const auto kept = static_cast<double>(sub.mesh->num_triangles());
+    return sub.mesh->empty() ||
+                   kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles())
+               ? whole
+               : sub.mesh;
+  };
+  in.lower = pick(roi.lower, jaws_.lower_L);
+  in.upper = pick(roi.upper, jaws_.upper_U);
+  in.model.lower_cut = in.lower != jaws_.lower_L;
+  in.model.upper_cut = in.upper != jaws_.upper_U;
+  std::cerr << "occlude: " << RegionLine(in.options.voxel_size_mm, roi.stats)
+            << (in.model.lower_cut || in.model.upper_cut
+                    ? ""
+                    : "; too little to cut: modelling the whole jaws")
+            << "\n";
+  in.what = " on the region of interest";
+  in.model.region = roi.stats;
+  in.model.build_seconds = selector_seconds + roi.stats.seconds;
+  return in;
+}
+
+std::unique_ptr<collision::JawOracle> CaseSession::BuildStage(const StageInputs& in) {
+  return BuildOracle(in.lower, in.upper, in.options, in.what);
+}
+
+void CaseSession::KeepStage(std::size_t index, StageInputs in,
+                            std::unique_ptr<collision::JawOracle> oracle) {
+  in.model.bytes = oracle->MemoryBytes();
+  in.model.build_seconds += oracle->build_seconds();
+  models_.push_back(in.model);
+  oracles_[index] = std::move(oracle);
+}
+
 const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
-  const std::vector<double> voxels = ScheduleVoxels(config_);
-  if (oracles_.empty()) oracles_.resize(voxels.size());
+  if (oracles_.empty()) oracles_.resize(ScheduleVoxels(config_).size());
   if (!oracles_[index]) {
-    collision::OracleOptions base = SessionOracleBase(config_);
-    base.arch = arch_;
-    const collision::OracleOptions options = planner::StageOracleOptions(base, voxels, index);
-    OracleModel model{options.voxel_size_mm, std::nullopt, 0, 0.0};
-    if (!config_.region_of_interest) {
-      oracles_[index] = BuildOracle(jaws_.lower_L, jaws_.upper_U, options, "");
-    } else {
-      double selector_seconds = 0.0;  // the bounds' share, counted with the first region
-      if (!region_) {
-        region_ = std::make_unique<collision::RegionSelector>(jaws_.lower_L, jaws_.upper_U,
-                                                              RegionRequest(0.0));
-        selector_seconds = region_->seconds();
-      }
-      const collision::RegionOfInterest roi =
-          region_->Select(SessionReadRadiusMm(config_, options));
-      // A jaw that keeps nearly everything is modelled whole (the cut would save little and
-      // cost a copy of the mesh), and so is one that keeps nothing (jaws out of each other's
-      // reach: an oracle needs a surface).
-      auto pick = [](const collision::RegionMesh& sub,
-                     const std::shared_ptr<const io::TriangleMesh>& whole) {
-        const auto kept = static_cast<double>(sub.mesh->num_triangles());
-        return sub.mesh->empty() ||
-                       kept >= kWholeAboveShare * static_cast<double>(whole->num_triangles())
-                   ? whole
-                   : sub.mesh;
-      };
-      const auto lower = pick(roi.lower, jaws_.lower_L), upper = pick(roi.upper, jaws_.upper_U);
-      model.lower_cut = lower != jaws_.lower_L;
-      model.upper_cut = upper != jaws_.upper_U;
-      std::cerr << "occlude: " << RegionLine(options.voxel_size_mm, roi.stats)
-                << (model.lower_cut || model.upper_cut
-                        ? ""
-                        : "; too little to cut: modelling the whole jaws")
-                << "\n";
-      oracles_[index] = BuildOracle(lower, upper, options, " on the region of interest");
-      model.region = roi.stats;
-      model.build_seconds = selector_seconds + roi.stats.seconds;
-    }
-    model.bytes = oracles_[index]->MemoryBytes();
-    model.build_seconds += oracles_[index]->build_seconds();
-    models_.push_back(model);
+    StageInputs in = PrepareStage(index);
+    std::unique_ptr<collision::JawOracle> oracle = BuildStage(in);
+    KeepStage(index, std::move(in), std::move(oracle));
   }
   return *oracles_[index];
 }
@@ -246,6 +261,25 @@ const collision::JawOracle& CaseSession::Oracle(std::size_t index) {
 const planner::OracleSchedule& CaseSession::Schedule() {
   if (stages_.empty()) {
     const std::size_t n = ScheduleVoxels(config_).size();
+    if (oracles_.empty()) oracles_.resize(n);
+    // The stages the cache holds are read at once (reading is copying and checking, on one
+    // core each); the others are built one after the other, as a build uses every core and
+    // its transient grids would add up.
+    std::vector<StageInputs> inputs(n);
+    std::vector<std::unique_ptr<collision::JawOracle>> made(n);
+    std::vector<std::function<void()>> reads;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (oracles_[i]) continue;
+      inputs[i] = PrepareStage(i);
+      if (cache_->Holds(*inputs[i].lower, *inputs[i].upper, inputs[i].options))
+        reads.emplace_back([&, i] { made[i] = BuildStage(inputs[i]); });
+    }
+    RunTasks(reads);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (oracles_[i]) continue;
+      if (!made[i]) made[i] = BuildStage(inputs[i]);
+      KeepStage(i, std::move(inputs[i]), std::move(made[i]));
+    }
     // Coarse stages at sub-voxel level; the finest at the level chosen for the accuracy.
     for (std::size_t i = 0; i < n; ++i) {
       stages_.push_back(

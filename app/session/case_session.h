@@ -126,6 +126,19 @@ class CaseSession {
   std::vector<std::unique_ptr<collision::JawOracle>> oracles_;
   planner::OracleSchedule stages_;
   const collision::JawOracle& Oracle(std::size_t index);
+  /// What stage `index`'s oracle is made of: its options, the meshes it models (the whole jaws
+  /// or the region's), its record so far and its step's label; prints the region's line.
+  struct StageInputs {
+    collision::OracleOptions options;
+    std::shared_ptr<const io::TriangleMesh> lower, upper;
+    OracleModel model;
+    std::string what;
+  };
+  StageInputs PrepareStage(std::size_t index);
+  /// The stage's oracle, read from the cache or built (thread-safe for different stages).
+  std::unique_ptr<collision::JawOracle> BuildStage(const StageInputs& in);
+  /// Keeps `oracle` as stage `index`'s and records what it models.
+  void KeepStage(std::size_t index, StageInputs in, std::unique_ptr<collision::JawOracle> oracle);
   /// The schedule's finest oracle when built (never released), else null.
   const collision::JawOracle* BuiltScheduledFinest() const;
   std::unique_ptr<MapFields> maps_;  ///< may point into the finest oracle (never released)

@@ -191,6 +191,14 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
   }
 }
 
+bool OracleCache::Holds(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
+                        const collision::OracleOptions& options) const {
+  if (folder_.empty()) return false;
+  std::error_code ec;
+  return fs::exists(
+      folder_ / OracleCacheEntryName(collision::OracleCacheKey(lower_L, upper_U, options)), ec);
+}
+
 std::optional<std::string> OracleCache::GetBytes(std::string_view kind, std::uint64_t key) {
   if (folder_.empty()) return std::nullopt;
   const fs::path file = folder_ / ByteEntryName(kind, key);

@@ -17,6 +17,7 @@
 // front: ByteEntry*), under the same checks, writes, warnings and size limit.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -59,10 +60,16 @@ class OracleCache {
   /// passes every check, else `build()` (then saved, the folder evicted to its limit, and
   /// the saved form read back: a miss answers and reports exactly as a later hit; where the
   /// entry cannot be written, the built oracle, which answers alike).
+  /// Get may be called from several threads at once (for different oracles: two runs of one
+  /// build would both save it).
   std::unique_ptr<collision::JawOracle> Get(
       std::shared_ptr<const io::TriangleMesh> lower_L,
       std::shared_ptr<const io::TriangleMesh> upper_U, const collision::OracleOptions& options,
       const std::function<std::unique_ptr<collision::JawOracle>()>& build);
+  /// Whether the folder has an entry under the key of these meshes and options (not checked:
+  /// Get checks it); false when the cache is off.
+  bool Holds(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
+             const collision::OracleOptions& options) const;
 
   /// The bytes last saved under `kind` (lower-case letters, e.g. "analysis") and `key`, when
   /// the entry passes every check; nullopt when the cache is off or the entry is missing or bad
@@ -75,6 +82,7 @@ class OracleCache {
 
   /// The folder in use (empty when the cache is off).
   const std::filesystem::path& folder() const { return folder_; }
+  /// With Gets on several threads, one of theirs.
   OracleCacheOutcome last_outcome() const { return last_; }
 
  private:
@@ -83,7 +91,7 @@ class OracleCache {
   std::ostream* warnings_;
   std::mutex warn_mutex_;  ///< lines come from the threads of GetBytes and PutBytes too
   bool warned_write_ = false;
-  OracleCacheOutcome last_ = OracleCacheOutcome::kOff;
+  std::atomic<OracleCacheOutcome> last_{OracleCacheOutcome::kOff};
   /// Writes the entry (then evicts to the limit); false, with a warning, when it cannot.
   bool Save(const collision::JawOracle& oracle, const std::filesystem::path& file);
   /// One line on the warning stream; with `once`, only the first time.

@@ -13,6 +13,7 @@
 #include "occlude/angles.h"
 #include "occlude/collision/distance_bound.h"
 #include "occlude/collision/voxel_grid.h"
+#include "parallel.h"
 #include "voxelize_detail.h"
 
 namespace occlude::collision {
@@ -217,9 +218,12 @@ RegionSelector::RegionSelector(std::shared_ptr<const io::TriangleMesh> lower_L,
   m.displacement_mm = MaxDisplacementMm(*upper_U, request);  // validates the request
   m.upper_L = upper_U->Transformed(request.X_LU_start);
   if (!lower_L->empty() && !m.upper_L.empty()) {
-    m.upper_bound = BoundOf(m.upper_L, request.voxel_size_mm);
-    m.lower_bound = BoundOf(*lower_L, request.voxel_size_mm);
-    m.lower_closed = detail::ClosedComponentOfTriangle(*lower_L);
+    // Three independent pieces, each on a core of its own.
+    detail::RunConcurrently(
+        detail::ResolveThreads(0),
+        {[&] { m.upper_bound = BoundOf(m.upper_L, request.voxel_size_mm); },
+         [&] { m.lower_bound = BoundOf(*lower_L, request.voxel_size_mm); },
+         [&] { m.lower_closed = detail::ClosedComponentOfTriangle(*lower_L); }});
   }
   m.lower_L = std::move(lower_L);
   m.upper_U = std::move(upper_U);
@@ -246,16 +250,25 @@ RegionOfInterest RegionSelector::Select(double band_mm) const {
   s.reach_mm = s.band_mm + s.displacement_mm;
   s.lower_total = m.lower_L->num_triangles();
   s.upper_total = m.upper_U->num_triangles();
-  std::vector<std::uint32_t> lower_kept, upper_kept;
-  if (m.upper_bound && m.lower_bound) {
-    lower_kept = WholeClosedComponents(*m.lower_L, m.lower_closed,
-                                       Kept(*m.lower_L, *m.upper_bound, s.reach_mm));
-    upper_kept = Kept(m.upper_L, *m.lower_bound, s.reach_mm);
-  }
-  s.lower_kept = lower_kept.size();
-  s.upper_kept = upper_kept.size();
-  roi.lower = SubMesh(m.lower_L, std::move(lower_kept));
-  roi.upper = SubMesh(m.upper_U, std::move(upper_kept));
+  // The two jaws' selections are independent: one on each core.
+  detail::RunConcurrently(detail::ResolveThreads(0),
+                          {[&] {
+                             std::vector<std::uint32_t> kept;
+                             if (m.upper_bound && m.lower_bound) {
+                               kept = WholeClosedComponents(
+                                   *m.lower_L, m.lower_closed,
+                                   Kept(*m.lower_L, *m.upper_bound, s.reach_mm));
+                             }
+                             s.lower_kept = kept.size();
+                             roi.lower = SubMesh(m.lower_L, std::move(kept));
+                           },
+                           [&] {
+                             std::vector<std::uint32_t> kept;
+                             if (m.upper_bound && m.lower_bound)
+                               kept = Kept(m.upper_L, *m.lower_bound, s.reach_mm);
+                             s.upper_kept = kept.size();
+                             roi.upper = SubMesh(m.upper_U, std::move(kept));
+                           }});
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return roi;
 }

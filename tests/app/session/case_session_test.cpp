@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
 #include "config/case_config.h"
 #include "occlude/io/content_hash.h"
+#include "test_common.h"
 
 namespace occlude::app {
 namespace {
@@ -49,6 +52,43 @@ TEST(CaseSessionTest, CoarseOraclesAreReleasedAndBuiltAgainAlike) {
   for (std::size_t i = 0; i < again.size(); ++i) {
     EXPECT_EQ(again[i].level, first[i].level) << "stage " << i;
     EXPECT_EQ(AnswersDigest(*again[i].oracle), digests[i]) << "stage " << i;
+  }
+}
+
+// A schedule read from a warm cache (the stages it holds read at once, the one missing built)
+// is the cold schedule: every stage answers alike, and the models are listed in stage order.
+TEST(CaseSessionTest, ScheduleReadFromTheCacheAnswersAsBuilt) {
+  const test::TempDir dir;
+  CaseConfig config =
+      ParseCaseConfig("[synthetic]\ntriangles = 5000\nseed = 1\n", "synthetic.toml");
+  config.cache_folder = dir.path();
+  std::vector<std::uint64_t> digests;
+  std::vector<double> voxels;
+  {
+    CaseSession cold(config);
+    for (const planner::OracleStage& stage : cold.Schedule())
+      digests.push_back(AnswersDigest(*stage.oracle));
+    for (const OracleModel& m : cold.Models()) voxels.push_back(m.voxel_mm);
+  }
+  ASSERT_EQ(digests.size(), 3u);
+  ASSERT_EQ(voxels, (std::vector<double>{0.8, 0.4, 0.2}));
+  std::vector<std::filesystem::path> entries;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    if (e.path().filename().string().rfind("oracle-", 0) == 0) entries.push_back(e.path());
+  }
+  ASSERT_EQ(entries.size(), 3u);
+  std::sort(entries.begin(), entries.end());
+  for (const bool drop_one : {false, true}) {
+    if (drop_one) std::filesystem::remove(entries[1]);  // one stage to build again
+    CaseSession warm(config);
+    const planner::OracleSchedule& schedule = warm.Schedule();
+    ASSERT_EQ(schedule.size(), digests.size());
+    for (std::size_t i = 0; i < schedule.size(); ++i)
+      EXPECT_EQ(AnswersDigest(*schedule[i].oracle), digests[i])
+          << "stage " << i << (drop_one ? ", one stage rebuilt" : "");
+    std::vector<double> warm_voxels;
+    for (const OracleModel& m : warm.Models()) warm_voxels.push_back(m.voxel_mm);
+    EXPECT_EQ(warm_voxels, voxels) << drop_one;
   }
 }
 

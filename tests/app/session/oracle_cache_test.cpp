@@ -125,6 +125,26 @@ TEST_F(OracleCacheTest, SecondGetIsAHitThatAnswersBitIdenticallyToAFreshBuild) {
   EXPECT_EQ(warnings_.str(), "");
 }
 
+// Holds tells whether an entry of the key is there (the session reads those at once): not
+// before the first Get, then yes; not for other settings, nor when the cache is off.
+TEST_F(OracleCacheTest, HoldsSaysWhetherTheEntryIsThere) {
+  TempDir dir;
+  OracleCacheSettings settings;
+  settings.folder = dir.path();
+  const OracleCache cache(settings, &warnings_);
+  EXPECT_FALSE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+  OracleCacheOutcome outcome;
+  Get(dir.path(), &outcome);
+  EXPECT_TRUE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+  collision::OracleOptions other = options_;
+  other.sample_spacing_mm *= 1.5;
+  EXPECT_FALSE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, other));
+  OracleCacheSettings off;
+  off.enabled = false;
+  off.folder = dir.path();
+  EXPECT_FALSE(OracleCache(off, &warnings_).Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+}
+
 TEST_F(OracleCacheTest, AChangedMeshByteOrSettingMisses) {
   TempDir dir;
   OracleCacheOutcome outcome;
