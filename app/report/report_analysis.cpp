@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <thread>
@@ -32,31 +33,91 @@ Eigen::Vector3i CellOf(const Eigen::Vector3d& p, double cell) {
                          static_cast<int>(std::floor(p.z() / cell)));
 }
 
-// Cells of size `cell` (>= reach) touched by the bounding boxes of the field mesh's triangles:
-// a point with no such cell among its 27 neighbours is farther than `reach` from the mesh.
-std::unordered_set<std::uint64_t> OccupiedCells(const io::TriangleMesh& mesh, double cell) {
-  std::unordered_set<std::uint64_t> cells;
-  for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-    const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-    const Eigen::Vector3i lo = CellOf(a.cwiseMin(b).cwiseMin(c), cell),
-                          hi = CellOf(a.cwiseMax(b).cwiseMax(c), cell);
-    for (int x = lo.x(); x <= hi.x(); ++x) {
-      for (int y = lo.y(); y <= hi.y(); ++y) {
-        for (int z = lo.z(); z <= hi.z(); ++z) cells.insert(CellKey(Eigen::Vector3i(x, y, z)));
+// The cells of size `cell` (>= reach) within one cell (of the 27 around) of a cell that the
+// bounding box of one of the field mesh's triangles touches: a point whose cell is not among
+// them is farther than `reach` from the mesh. A bitmap over the mesh's box of cells (grown by
+// one), the boxes marked and then dilated one axis at a time; a hash set of the cells when that
+// box is huge (a stray vertex far away).
+class NearCells {
+ public:
+  NearCells(const io::TriangleMesh& mesh, double cell) {
+    std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>> boxes(mesh.num_triangles());
+    lo_ = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
+    Eigen::Vector3i hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+      const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+      boxes[t] = {CellOf(a.cwiseMin(b).cwiseMin(c), cell), CellOf(a.cwiseMax(b).cwiseMax(c), cell)};
+      lo_ = lo_.cwiseMin(boxes[t].first);
+      hi = hi.cwiseMax(boxes[t].second);
+    }
+    if (boxes.empty()) return;
+    lo_ -= Eigen::Vector3i::Ones();  // room for the dilation
+    dims_ = (hi - lo_ + Eigen::Vector3i::Constant(2)).cast<std::int64_t>();
+    if (dims_.prod() > kMaxBitmapCells) {
+      for (const auto& [l, h] : boxes)
+        ForCells(l, h, [&](const Eigen::Vector3i& c) {
+          for (int d = 0; d < 27; ++d)
+            set_.insert(CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1)));
+        });
+      return;
+    }
+    bits_.assign(static_cast<std::size_t>(dims_.prod()), 0);
+    for (const auto& [l, h] : boxes)
+      ForCells(l, h, [&](const Eigen::Vector3i& c) { bits_[At(c)] = 1; });
+    for (int axis = 0; axis < 3; ++axis) Dilate(axis);
+  }
+
+  bool Contains(const Eigen::Vector3i& c) const {
+    if (bits_.empty()) return set_.count(CellKey(c)) > 0;
+    const Eigen::Vector3i i = c - lo_;
+    if ((i.array() < 0).any() || (i.cast<std::int64_t>().array() >= dims_.array()).any())
+      return false;
+    return bits_[At(c)] != 0;
+  }
+
+ private:
+  static constexpr std::int64_t kMaxBitmapCells = std::int64_t{1} << 26;
+
+  template <typename Visit>
+  static void ForCells(const Eigen::Vector3i& l, const Eigen::Vector3i& h, Visit&& visit) {
+    for (int x = l.x(); x <= h.x(); ++x) {
+      for (int y = l.y(); y <= h.y(); ++y) {
+        for (int z = l.z(); z <= h.z(); ++z) visit(Eigen::Vector3i(x, y, z));
       }
     }
   }
-  return cells;
-}
+  std::size_t At(const Eigen::Vector3i& c) const {
+    const Eigen::Matrix<std::int64_t, 3, 1> i = (c - lo_).cast<std::int64_t>();
+    return static_cast<std::size_t>(i.x() + dims_.x() * (i.y() + dims_.y() * i.z()));
+  }
+  // Every cell also marked when a neighbour along `axis` is (the box's border cells are never
+  // marked before the dilation: the box was grown by one).
+  void Dilate(int axis) {
+    const std::int64_t stride = axis == 0 ? 1 : axis == 1 ? dims_.x() : dims_.x() * dims_.y();
+    const std::vector<std::uint8_t> before = bits_;
+    for (std::size_t k = 0; k < bits_.size(); ++k) {
+      if (before[k] == 0) continue;
+      const auto i = static_cast<std::int64_t>(k);
+      const std::int64_t along = (i / stride) % dims_[axis];
+      if (along > 0) bits_[static_cast<std::size_t>(i - stride)] = 1;
+      if (along + 1 < dims_[axis]) bits_[static_cast<std::size_t>(i + stride)] = 1;
+    }
+  }
+
+  Eigen::Vector3i lo_ = Eigen::Vector3i::Zero();
+  Eigen::Matrix<std::int64_t, 3, 1> dims_ = Eigen::Matrix<std::int64_t, 3, 1>::Zero();
+  std::vector<std::uint8_t> bits_;
+  std::unordered_set<std::uint64_t> set_;
+};
 
 // Signed distance of every vertex (moved into the field's frame by X_FM) to the field's mesh;
-// vertices farther than `reach` (culled by the occupied cells first) hold kFarValue.
+// vertices farther than `reach` (culled by the near cells first) hold kFarValue.
 std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X_FM,
                                    const collision::NarrowBandSdf& field,
                                    const io::TriangleMesh& field_mesh, double reach) {
   std::vector<float> out(mesh.num_vertices(), render::kFarValue);
   const double cell = reach * (1.0 + 1e-9);
-  const std::unordered_set<std::uint64_t> occupied = OccupiedCells(field_mesh, cell);
+  const NearCells near_cells(field_mesh, cell);
   const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
   const std::size_t chunk = (out.size() + threads - 1) / threads;
   std::vector<std::thread> pool;
@@ -65,13 +126,8 @@ std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Is
       collision::SignedDistanceSample s;
       for (std::size_t i = k * chunk; i < std::min(out.size(), (k + 1) * chunk); ++i) {
         const Eigen::Vector3d p = X_FM * mesh.vertices[i];
-        const Eigen::Vector3i c = CellOf(p, cell);
-        bool near = false;
-        for (int d = 0; d < 27 && !near; ++d) {
-          near = occupied.count(
-                     CellKey(c + Eigen::Vector3i(d % 3 - 1, (d / 3) % 3 - 1, d / 9 - 1))) > 0;
-        }
-        if (near && field.Exact(p, reach, &s)) out[i] = static_cast<float>(s.distance);
+        if (near_cells.Contains(CellOf(p, cell)) && field.Exact(p, reach, &s))
+          out[i] = static_cast<float>(s.distance);
       }
     });
   }

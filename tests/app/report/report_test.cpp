@@ -7,13 +7,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
 #include "config/case_config.h"
 #include "config/pose_file.h"
+#include "occlude/collision/closest_point.h"
 #include "occlude/io/synthetic_jaws.h"
 #include "report/report_analysis.h"
 #include "report/report_document.h"
@@ -108,6 +111,41 @@ TEST(ReportAnalysisTest, TruthPoseHasContactsOnBothSidesAndNoPenetration) {
   for (const auto& t : a.teeth) upper_teeth_in_contact += t.upper && t.contact_area_mm2 > 0 ? 1 : 0;
   EXPECT_GE(upper_teeth_in_contact, 6);
   EXPECT_EQ(a.lower_vertex_mm.size(), Shared().jaws.lower_L->num_vertices());
+}
+
+// The maps' vertex distances against brute force (every triangle of the other jaw): a vertex
+// within the reach holds its distance (up to sign), one beyond holds the far value. The cells
+// that cull far vertices must never drop a near one, on either jaw, at either pose.
+TEST(ReportAnalysisTest, VertexDistancesMatchBruteForceWithinTheReach) {
+  const Fixture& f = Shared();
+  for (const app::ReportAnalysis* a : {&f.truth, &f.pushed}) {
+    const auto check = [&](const io::TriangleMesh& mesh, const Eigen::Isometry3d& X_FM,
+                           const io::TriangleMesh& field, const std::vector<float>& got) {
+      ASSERT_EQ(got.size(), mesh.num_vertices());
+      int near = 0, far = 0;
+      for (std::size_t i = 0; i < mesh.num_vertices(); i += 2) {
+        const Eigen::Vector3d p = X_FM * mesh.vertices[i];
+        double best2 = std::numeric_limits<double>::infinity();
+        for (std::size_t t = 0; t < field.num_triangles(); ++t) {
+          best2 = std::min(best2, collision::ClosestPointOnTriangle(
+                                      p, field.corner(t, 0), field.corner(t, 1), field.corner(t, 2))
+                                      .squared_distance);
+        }
+        const double d = std::sqrt(best2);
+        if (d < a->reach_mm - 1e-6) {
+          EXPECT_NEAR(std::abs(got[i]), d, 1e-5) << "vertex " << i;
+          ++near;
+        } else if (d > a->reach_mm + 1e-6) {
+          EXPECT_EQ(got[i], render::kFarValue) << "vertex " << i << " at " << d << " mm";
+          ++far;
+        }
+      }
+      EXPECT_GT(near, 20);
+      EXPECT_GT(far, 20);
+    };
+    check(*f.jaws.upper_U, a->X_LU, *f.jaws.lower_L, a->upper_vertex_mm);
+    check(*f.jaws.lower_L, a->X_LU.inverse(), *f.jaws.upper_U, a->lower_vertex_mm);
+  }
 }
 
 TEST(ReportImages, TruthContactsShowTheContactColourAndNoPenetration) {
