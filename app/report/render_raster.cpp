@@ -21,10 +21,16 @@ double Edge(const Vertex2& a, const Vertex2& b, double px, double py) {
   return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
 }
 
-// A barycentric weight as an affine function of the pixel centre (px, py).
+// A barycentric weight as an affine function of the pixel centre (px, py), with 1 / x (0 when
+// x is 0) for the rows' spans.
 struct Weight {
   double x = 0, y = 0, k = 0;
+  double inv_x = 0;
   double At(double px, double py) const { return x * px + y * py + k; }
+  Weight& WithInverse() {
+    inv_x = x != 0.0 ? 1.0 / x : 0.0;
+    return *this;
+  }
 };
 
 // The weight of the vertex opposite the edge p -> q: Edge(p, q, px, py) / area.
@@ -33,23 +39,25 @@ Weight OppositeWeight(const Vertex2& p, const Vertex2& q, double inv_area) {
           ((q.y - p.y) * p.x - (q.x - p.x) * p.y) * inv_area};
 }
 
-// Narrows [lo, hi] (pixel-centre x) to where w >= 0 along the row at py; false when nowhere.
+// Narrows [lo, hi] (pixel-centre x) towards where w >= 0 along the row at py (up to the
+// rounding SpanSlack bounds); false when w is negative all along it.
 bool ClipSpan(const Weight& w, double py, double* lo, double* hi) {
   const double r = w.y * py + w.k;
   if (w.x > 0) {
-    *lo = std::max(*lo, -r / w.x);
+    *lo = std::max(*lo, -r * w.inv_x);
   } else if (w.x < 0) {
-    *hi = std::min(*hi, -r / w.x);
+    *hi = std::min(*hi, -r * w.inv_x);
   } else if (r < 0) {
     return false;
   }
-  return *lo <= *hi;
+  return true;
 }
 
 // How far (pixels) a span's end found by ClipSpan may lie from where the per-pixel weights
 // (ua, ub and uc = 1 - ua - ub, summed in another order) change sign: their rounding, bounded
-// far above by 1e-9 of each weight's terms over its slope along the row; at most a pixel (a
-// weight all but constant along rows, whose end the division cannot place).
+// far above by 1e-9 of each weight's terms over its slope along the row (the product with the
+// slope's inverse included); at most a pixel (a weight all but constant along rows, whose end
+// the product cannot place).
 double SpanSlack(const Weight& wa, const Weight& wb, const Weight& wc, int width, int height) {
   const auto terms = [&](const Weight& w) {
     return std::abs(w.x) * (width + 1.0) + std::abs(w.y) * (height + 1.0) + std::abs(w.k);
@@ -57,7 +65,7 @@ double SpanSlack(const Weight& wa, const Weight& wb, const Weight& wc, int width
   const double ta = terms(wa), tb = terms(wb);
   double slack = 0.0;
   for (const auto& [w, t] : {std::pair{wa, ta}, std::pair{wb, tb}, std::pair{wc, ta + tb + 1.0}}) {
-    if (w.x != 0.0) slack = std::max(slack, 1e-9 * t / std::abs(w.x));
+    slack = std::max(slack, 1e-9 * t * std::abs(w.inv_x));
   }
   return std::min(1.0, slack);
 }
@@ -67,9 +75,9 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
   const double area = Edge(a, b, c.x, c.y);
   if (std::abs(area) < 1e-12) return;
   const double inv_area = 1.0 / area;
-  const Weight wa = OppositeWeight(b, c, inv_area);
-  const Weight wb = OppositeWeight(c, a, inv_area);
-  const Weight wc{-(wa.x + wb.x), -(wa.y + wb.y), 1.0 - wa.k - wb.k};
+  const Weight wa = OppositeWeight(b, c, inv_area).WithInverse();
+  const Weight wb = OppositeWeight(c, a, inv_area).WithInverse();
+  const Weight wc = Weight{-(wa.x + wb.x), -(wa.y + wb.y), 1.0 - wa.k - wb.k}.WithInverse();
   const double slack = SpanSlack(wa, wb, wc, g->width, g->height);
   const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
   const int x1 = std::min(g->width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
@@ -78,7 +86,7 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
   for (int y = y0; y <= y1; ++y) {
     const double py = y + 0.5;
     // The row's pixel centres inside the triangle, found from its three edges and widened by
-    // the slack each way; the weights' signs below decide each pixel.
+    // the slack each way (an empty span stays empty); the weights' signs decide each pixel.
     double lo = x0 + 0.5, hi = x1 + 0.5;
     if (!ClipSpan(wa, py, &lo, &hi) || !ClipSpan(wb, py, &lo, &hi) || !ClipSpan(wc, py, &lo, &hi))
       continue;
