@@ -18,24 +18,6 @@
 
 namespace occlude::collision {
 
-/// lower grid.Classify(voxel of p_L) == kInterior: the interior runs are
-/// disjoint from the other classes, so the runs of the voxel's row tell (there
-/// are none for open meshes).
-inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
-  if (interior_row_begin_.empty()) return false;
-  const VoxelGrid& grid = lower_.grid();
-  const Eigen::Vector3i v = grid.VoxelOf(p_L);
-  if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) return false;
-  const std::size_t row = static_cast<std::size_t>(v.y()) +
-                          static_cast<std::size_t>(grid.dims.y()) * static_cast<std::size_t>(v.z());
-  for (std::uint32_t k = interior_row_begin_[row]; k < interior_row_begin_[row + 1]; ++k) {
-    const VoxelRun& r = grid.interior_runs[k];
-    if (v.x() < r.x_begin) return false;
-    if (v.x() < r.x_end) return true;
-  }
-  return false;
-}
-
 /// Where the unknown samples of a cell (outside the field's band) lie.
 enum class UnknownSide {
   kExterior,       ///< all outside the lower jaw: they count for nothing

@@ -111,11 +111,7 @@ bool StageDistance(const OracleStage& stage, const Eigen::Vector3d& p_L, double 
     known = oracle.lower_sdf().Interpolate(p_L, d, &g);
     if (known && gradient) *gradient = g;
   }
-  *deep = false;
-  if (!known) {
-    const collision::VoxelGrid& grid = oracle.lower_tree().grid();
-    *deep = grid.IsInterior(grid.VoxelOf(p_L));
-  }
+  *deep = !known && oracle.LowerInterior(p_L);
   return known;
 }
 

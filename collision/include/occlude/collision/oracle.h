@@ -189,6 +189,9 @@ class JawOracle {
   double sample_spacing_mm() const { return options_.sample_spacing_mm; }
   double build_seconds() const { return build_seconds_; }
   std::size_t MemoryBytes() const;
+  /// Whether the lower grid classes p_L's voxel Interior: lower_tree().grid().IsInterior(
+  /// VoxelOf(p_L)), read from the runs of the voxel's row alone.
+  bool LowerInterior(const Eigen::Vector3d& p_L) const;
 
  private:
   friend struct detail::OracleCodec;
@@ -219,8 +222,6 @@ class JawOracle {
   /// lie inside the lower), else classified on its own.
   void AddUnknownSample(std::uint32_t i, bool interior, const QueryContext& q,
                         OracleResult* result) const;
-  /// The lower grid classes p_L's voxel Interior (oracle_context.h).
-  bool LowerInterior(const Eigen::Vector3d& p_L) const;
   // No upper cell came within reach of the lower surface: the upper lies wholly outside the
   // lower or (some of its connected components) wholly inside a closed lower component. One
   // interior test per upper component tells which; the samples of those inside count as deep.
@@ -291,5 +292,23 @@ class JawOracle {
 /// cells, samples evaluated; not node_tests), parts, point lists and residuals. Equal hashes
 /// over many queries mean bit-identical answers (determinism and saved-oracle checks).
 void HashOracleResult(const OracleResult& result, io::Hasher64* hash);
+
+// lower grid.Classify(voxel of p_L) == kInterior: the interior runs are disjoint from the other
+// classes, so the runs of the voxel's row tell (there are none for open meshes). Inline: the
+// queries and the planner's settle ask it per sample.
+inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
+  if (interior_row_begin_.empty()) return false;
+  const VoxelGrid& grid = lower_.grid();
+  const Eigen::Vector3i v = grid.VoxelOf(p_L);
+  if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) return false;
+  const std::size_t row = static_cast<std::size_t>(v.y()) +
+                          static_cast<std::size_t>(grid.dims.y()) * static_cast<std::size_t>(v.z());
+  for (std::uint32_t k = interior_row_begin_[row]; k < interior_row_begin_[row + 1]; ++k) {
+    const VoxelRun& r = grid.interior_runs[k];
+    if (v.x() < r.x_begin) return false;
+    if (v.x() < r.x_end) return true;
+  }
+  return false;
+}
 
 }  // namespace occlude::collision
