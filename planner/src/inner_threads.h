@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -27,13 +28,30 @@ struct InnerBudget {
 /// The calling thread's budget (thread-local; ParallelFor sets it for its workers).
 InnerBudget& CurrentInnerBudget();
 
+/// Gives the calling thread the budget of `threads` threads (no helper CPU yet) for its life,
+/// then the budget it had (also when an exception unwinds it).
+class InnerBudgetScope {
+ public:
+  explicit InnerBudgetScope(int threads) : outer_(CurrentInnerBudget()) {
+    CurrentInnerBudget() = {threads, 0.0};
+  }
+  ~InnerBudgetScope() { CurrentInnerBudget() = outer_; }
+  InnerBudgetScope(const InnerBudgetScope&) = delete;
+  InnerBudgetScope& operator=(const InnerBudgetScope&) = delete;
+
+ private:
+  InnerBudget outer_;
+};
+
 /// CPU seconds of the calling thread and of its ForBlocks helpers so far (differences of it
 /// time a job).
 inline double JobCpuSeconds() { return CpuSeconds() + CurrentInnerBudget().helper_cpu; }
 
 /// Calls body(begin, end) over [0, n) in consecutive blocks of `block` items, on up to
 /// CurrentInnerBudget().threads threads (the caller among them); the helpers' CPU is added to
-/// the budget. body must only write what belongs to its items.
+/// the budget. body must only write what belongs to its items. An exception from body stops
+/// the blocks not yet started and is rethrown on the caller once every thread has stopped (the
+/// first block's that failed, by block number).
 template <typename Body>
 void ForBlocks(std::size_t n, std::size_t block, Body body) {
   block = std::max<std::size_t>(1, block);
@@ -46,9 +64,16 @@ void ForBlocks(std::size_t n, std::size_t block, Body body) {
     return;
   }
   std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> failed(blocks);
   const auto run = [&] {
-    for (std::size_t b = next++; b < blocks; b = next++)
-      body(b * block, std::min(n, (b + 1) * block));
+    for (std::size_t b = next++; b < blocks; b = next++) {
+      try {
+        body(b * block, std::min(n, (b + 1) * block));
+      } catch (...) {
+        failed[b] = std::current_exception();
+        next = blocks;  // no new block starts
+      }
+    }
   };
   std::vector<double> cpu(static_cast<std::size_t>(threads - 1), 0.0);
   std::vector<std::thread> helpers;
@@ -63,6 +88,9 @@ void ForBlocks(std::size_t n, std::size_t block, Body body) {
   run();
   for (auto& t : helpers) t.join();
   for (const double c : cpu) budget.helper_cpu += c;
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
 }
 
 }  // namespace occlude::planner::detail

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <random>
@@ -199,26 +200,36 @@ Candidates CoarseThenFine(const SearchContext& c, const std::vector<Vector6d>& s
 /// indexed by i, so they do not depend on the thread count. Each worker's jobs may use the
 /// threads the workers leave idle (InnerBudget: threads / workers each). Returns the CPU seconds
 /// of the threads other than the caller (the caller's own are on its clock), its jobs' helpers
-/// included.
+/// included. A job's exception stops the jobs not yet started and is rethrown on the caller
+/// once every worker has stopped (the lowest-numbered failed job's).
 template <typename Job>
 double ParallelFor(std::size_t n, int threads, Job job) {
   std::atomic<std::size_t> next{0};
   const int count = std::max(1, std::min<int>(threads, static_cast<int>(n)));
   const int inner = std::max(1, threads / count);
   std::vector<double> cpu(static_cast<std::size_t>(count), 0.0);
+  std::vector<std::exception_ptr> failed(n);
   auto worker = [&](int slot) {
-    InnerBudget& budget = CurrentInnerBudget();
-    const InnerBudget outer = budget;
-    budget = {inner, 0.0};
+    const InnerBudgetScope scope(inner);  // the worker's budget, the thread's own again after
     const double t0 = CpuSeconds();
-    for (std::size_t i = next++; i < n; i = next++) job(i);
-    cpu[static_cast<std::size_t>(slot)] = (slot == 0 ? 0.0 : CpuSeconds() - t0) + budget.helper_cpu;
-    budget = outer;
+    for (std::size_t i = next++; i < n; i = next++) {
+      try {
+        job(i);
+      } catch (...) {
+        failed[i] = std::current_exception();
+        next = n;  // no new job starts
+      }
+    }
+    cpu[static_cast<std::size_t>(slot)] =
+        (slot == 0 ? 0.0 : CpuSeconds() - t0) + CurrentInnerBudget().helper_cpu;
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < count; ++t) pool.emplace_back(worker, t);
   worker(0);
   for (auto& t : pool) t.join();
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);  // the lowest-numbered job's that failed
+  }
   double others = 0.0;
   for (const double c : cpu) others += c;
   return others;

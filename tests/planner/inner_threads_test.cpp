@@ -8,6 +8,7 @@
 #include <atomic>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <tuple>
 #include <utility>
@@ -58,6 +59,41 @@ TEST(InnerThreadsTest, ForBlocksCoversEveryItemOnceInFixedBlocks) {
       }
     }
   }
+}
+
+// A failing block reaches the caller as its exception, on one thread or two; no thread is left
+// running and the caller's budget is restored.
+TEST(InnerThreadsTest, ForBlocksRethrowsAFailureOnTheCaller) {
+  for (const int threads : {1, 2}) {
+    std::atomic<int> ran{0};
+    try {
+      ParallelFor(1, threads, [&](std::size_t) {
+        ForBlocks(4096, 64, [&](std::size_t begin, std::size_t end) {
+          ++ran;
+          if (begin <= 320 && 320 < end) throw std::runtime_error("item 320");
+        });
+      });
+      ADD_FAILURE() << "no exception on " << threads << " thread(s)";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "item 320");
+    }
+    EXPECT_GE(ran.load(), 1);
+    EXPECT_EQ(CurrentInnerBudget().threads, 1);
+  }
+}
+
+// A failing job of several on two workers reaches the caller (no thread left joinable, which
+// would end the process), and the jobs after it do not start.
+TEST(InnerThreadsTest, ParallelForRethrowsAJobsFailureOnTheCaller) {
+  std::atomic<int> ran{0};
+  EXPECT_THROW(ParallelFor(1000, 2,
+                           [&](std::size_t i) {
+                             ++ran;
+                             if (i == 3) throw std::runtime_error("job 3");
+                           }),
+               std::runtime_error);
+  EXPECT_LT(ran.load(), 1000);
+  EXPECT_EQ(CurrentInnerBudget().threads, 1);
 }
 
 TEST(InnerThreadsTest, HelpersCpuCountsInTheParallelForTotal) {
