@@ -86,9 +86,11 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
   for (int y = y0; y <= y1; ++y) {
     const double py = y + 0.5;
     // The row's pixel centres inside the triangle, found from its three edges and widened by
-    // the slack each way (an empty span stays empty); the weights' signs decide each pixel.
+    // the slack each way (a span that rounding alone made empty is still tested); the weights'
+    // signs decide each pixel. Past the emptiness test, lo and hi lie within the box.
     double lo = x0 + 0.5, hi = x1 + 0.5;
-    if (!ClipSpan(wa, py, &lo, &hi) || !ClipSpan(wb, py, &lo, &hi) || !ClipSpan(wc, py, &lo, &hi))
+    if (!ClipSpan(wa, py, &lo, &hi) || !ClipSpan(wb, py, &lo, &hi) || !ClipSpan(wc, py, &lo, &hi) ||
+        lo > hi + 2.0 * slack)
       continue;
     const int xs = std::max(x0, static_cast<int>(std::ceil(lo - 0.5 - slack)));
     const int xe = std::min(x1, static_cast<int>(std::floor(hi - 0.5 + slack)));
