@@ -1,7 +1,7 @@
 // The threads a job of ParallelFor may spread its own loops over. ParallelFor (search_internal.h)
-// hands each of its workers the threads it leaves idle, so one start alone (refine, a single
-// proposal's polish) gets every thread and many starts get one each; outside any ParallelFor a
-// thread has one. ForBlocks runs a loop of independent items on them.
+// hands each of its workers the threads the workers leave idle, so one start alone (refine, or
+// the one seat a coarse-to-fine search refines) gets every thread and many starts get one each;
+// outside any ParallelFor a thread has one. ForBlocks runs a loop of independent items on them.
 //
 // Determinism: ForBlocks' items write only their own slots, so a loop's results are the same
 // for any thread count; callers then combine them in item order on the calling thread.
