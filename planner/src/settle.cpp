@@ -24,41 +24,6 @@ ResidualSettings SeatSettings(const OracleStage& stage, const PlanRequest& reque
   return s;
 }
 
-std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples,
-                               const Eigen::Isometry3d& X_LU, const Problem& problem) {
-  std::vector<bool> spike(samples.size(), false);
-  const double cap = SpikePatchCap(*problem.request);
-  if (cap <= 0.0) return spike;
-  std::vector<PenetratingSample> pen;
-  std::vector<std::size_t> index;
-  const double reach = std::max(SeatSettings(stage, *problem.request).window_mm, 0.5);
-  // Each sample's depth (NaN: not penetrating) on the job's threads, then the list in order.
-  std::vector<double> depth(samples.size());
-  ForBlocks(samples.size(), kSamplesPerBlock, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      double d = 0.0;
-      bool deep = false;
-      const bool known = StageDistance(stage, X_LU * samples.p_U[i], reach, &d, nullptr, &deep);
-      const bool penetrating = known ? d < 0.0 : deep;
-      if (!penetrating) {
-        depth[i] = std::numeric_limits<double>::quiet_NaN();
-      } else {
-        depth[i] = deep ? stage.oracle->lower_sdf().band_mm() : -d;
-      }
-    }
-  });
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    if (std::isnan(depth[i])) continue;
-    pen.push_back({X_LU * samples.p_U[i], depth[i], samples.area_mm2[i]});
-    index.push_back(i);
-  }
-  const std::vector<bool> member =
-      SpikeMembersForMeasure(pen, 2.5 * samples.spacing_mm, cap,
-                             problem.request->max_penetration_mm, SpikeShallowMm(*problem.request));
-  for (std::size_t k = 0; k < pen.size(); ++k) spike[index[k]] = member[k];
-  return spike;
-}
-
 namespace {
 
 // Pass 1 of EvaluateSet: per sample its signed distance (unknown: -band when deep in the lower,
@@ -108,6 +73,20 @@ std::vector<char> SpikeFlags(const SetDistances& m, const SampleSet& samples,
   for (std::size_t k = 0; k < m.pen.size(); ++k) spike[m.pen_index[k]] = member[k] ? 1 : 0;
   return spike;
 }
+
+}  // namespace
+
+std::vector<bool> SpikeSamples(const OracleStage& stage, const SampleSet& samples,
+                               const Eigen::Isometry3d& X_LU, const Problem& problem) {
+  if (SpikePatchCap(*problem.request) <= 0.0) return std::vector<bool>(samples.size(), false);
+  // The penetrating samples as the set's evaluation measures them, within the seat window.
+  const double reach = std::max(SeatSettings(stage, *problem.request).window_mm, 0.5);
+  const std::vector<char> flags =
+      SpikeFlags(MeasureSet(stage, samples, X_LU, reach, reach), samples, *problem.request);
+  return std::vector<bool>(flags.begin(), flags.end());
+}
+
+namespace {
 
 // What pass 2 of EvaluateSet gathers besides the SetEvaluation itself.
 struct SetTotals {
