@@ -4,6 +4,7 @@
 // The upper's side is in oracle_samples.cpp.
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -95,6 +96,25 @@ void JawOracle::BuildInteriorRows() {
   }
   for (std::size_t i = 0; i + 1 < interior_row_begin_.size(); ++i)
     interior_row_begin_[i + 1] += interior_row_begin_[i];
+  BoundInterior();
+}
+
+void JawOracle::BoundInterior() {
+  const VoxelGrid& grid = lower_.grid();
+  Eigen::Vector3i lo = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
+  Eigen::Vector3i hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
+  for (const VoxelRun& r : grid.interior_runs) {
+    lo = lo.cwiseMin(Eigen::Vector3i(r.x_begin, r.y, r.z));
+    hi = hi.cwiseMax(Eigen::Vector3i(r.x_end - 1, r.y, r.z));
+  }
+  if (grid.interior_runs.empty()) {
+    interior_lo_L_ = Eigen::Vector3d::Constant(1.0);
+    interior_hi_L_ = Eigen::Vector3d::Constant(-1.0);
+    return;
+  }
+  // Voxel v's cube is [origin + s v, origin + s (v + 1)]; one voxel more on every side.
+  interior_lo_L_ = grid.origin_F + grid.voxel_size_mm * (lo.cast<double>().array() - 1.0).matrix();
+  interior_hi_L_ = grid.origin_F + grid.voxel_size_mm * (hi.cast<double>().array() + 2.0).matrix();
 }
 
 std::size_t JawOracle::MemoryBytes() const {

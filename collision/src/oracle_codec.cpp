@@ -321,6 +321,7 @@ void OracleCodec::GetArrays(ByteReader* in, JawOracle* o) {
   in->Check(o->node_sample_sphere_U_.size() <= nodes, "node sample spheres");
   in->Array(&o->component_samples_);
   in->Array(&o->interior_row_begin_);
+  o->BoundInterior();
   o->samples_centre_U_ = in->Value<Eigen::Vector3d>();
   o->samples_radius_ = in->Value<double>();
   in->Bools(&o->part_is_anterior_tooth_);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "occlude/collision/closest_point.h"
+#include "occlude/collision/floor_int.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/signed_distance.h"
 #include "parallel.h"
@@ -306,11 +307,16 @@ constexpr int kCornerStep[8] = {0, 1, 5, 6, 25, 26, 30, 31};
 const float* NarrowBandSdf::Locate(const Eigen::Vector3d& p, Eigen::Vector3f* local) const {
   if (corner_bricks_.empty()) return nullptr;
   const Eigen::Vector3d q = (p - origin_) * inv_s_;
-  const Eigen::Vector3d g(std::floor(q.x()), std::floor(q.y()), std::floor(q.z()));
+  // floor(q) in [lo, hi] (integers) is q in [lo, hi + 1); also false for NaN.
   const double lo = -shift_;
   const double hi = kMortonMaxCoord - shift_;
-  if (!(g.minCoeff() >= lo && g.maxCoeff() <= hi)) return nullptr;  // also NaN
-  const Eigen::Vector3i ijk = g.cast<int>() + Eigen::Vector3i::Constant(shift_);
+  for (int a = 0; a < 3; ++a) {
+    if (!(q[a] >= lo && q[a] < hi + 1.0)) return nullptr;
+  }
+  const Eigen::Vector3i floor_q(detail::FloorInt(q.x()), detail::FloorInt(q.y()),
+                                detail::FloorInt(q.z()));
+  const Eigen::Vector3d g = floor_q.cast<double>();
+  const Eigen::Vector3i ijk = floor_q + Eigen::Vector3i::Constant(shift_);
   const CornerBrick* brick =
       BrickAt(static_cast<std::uint32_t>(ijk.x()) >> 2, static_cast<std::uint32_t>(ijk.y()) >> 2,
               static_cast<std::uint32_t>(ijk.z()) >> 2);

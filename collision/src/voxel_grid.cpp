@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "occlude/collision/floor_int.h"
 #include "occlude/collision/morton.h"
 #include "seconds_since.h"
 #include "voxelize_detail.h"
@@ -172,7 +173,8 @@ Eigen::Vector3i VoxelGrid::VoxelOf(const Eigen::Vector3d& p_F) const {
   const double half = 0.5 * voxel_size_mm;
   Eigen::Vector3i ijk;
   for (int a = 0; a < 3; ++a) {
-    double q = std::floor((p_F[a] - origin_F[a]) / voxel_size_mm);
+    const double x = (p_F[a] - origin_F[a]) / voxel_size_mm;
+    double q = std::abs(x) < 1e9 ? detail::FloorInt(x) : std::floor(x);  // the same value
     if (!(std::abs(q) < 2147483647.0)) {  // NaN, empty grid (size 0) or far away
       ijk[a] = std::isnan(q) ? -1 : (q > 0 ? 2147483647 : -2147483647);
       continue;

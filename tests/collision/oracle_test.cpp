@@ -60,6 +60,30 @@ TEST_F(OracleBlockTest, ContactAreaIsTheBottomFaceWithinTheBand) {
   }
 }
 
+// LowerInterior against the grid's own classes (brute force): points at random around the slab,
+// on and an ulp off its voxels' faces, and far beyond its box on every side.
+TEST_F(OracleBlockTest, LowerInteriorIsTheGridsInteriorClass) {
+  const VoxelGrid& grid = oracle_->lower_tree().grid();
+  ASSERT_FALSE(grid.interior_runs.empty());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::uniform_int_distribution<int> face(-3, 40);
+  std::size_t interior = 0;
+  for (int i = 0; i < 30000; ++i) {
+    Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    if (i % 3 == 1) {  // on a voxel face, or an ulp off it, along one axis
+      const int a = i % 9 / 3;
+      const double f = grid.origin_F[a] + grid.voxel_size_mm * face(rng);
+      p[a] = i % 2 == 0 ? f : std::nextafter(f, i % 4 == 1 ? 1e9 : -1e9);
+    }
+    if (i % 50 == 0) p *= 1e3;  // far away
+    const bool expected = grid.IsInterior(grid.VoxelOf(p));
+    interior += expected ? 1 : 0;
+    EXPECT_EQ(oracle_->LowerInterior(p), expected) << p.transpose();
+  }
+  EXPECT_GT(interior, 1000u);
+}
+
 TEST_F(OracleBlockTest, PenetrationDepthAndArea) {
   OracleRequest req;
   req.level = AccuracyLevel::kExact;

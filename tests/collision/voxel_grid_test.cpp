@@ -15,6 +15,7 @@
 #include <random>
 #include <regex>
 
+#include "occlude/collision/floor_int.h"
 #include "occlude/collision/morton.h"
 #include "occlude/collision/triangle_box.h"
 #include "occlude/io/mesh_io.h"
@@ -484,6 +485,54 @@ TEST(VoxelizeTest, RealJawsHaveClosedTeeth) {
     const double est = static_cast<double>(EstimateVoxelizeBytes(mesh, Options(0.8)));
     EXPECT_GT(est, 0.5 * static_cast<double>(g.MemoryBytes()));
     EXPECT_LT(est, 2.0 * static_cast<double>(g.MemoryBytes()));
+  }
+}
+
+// FloorInt is std::floor on the values the grids give it: integers, their neighbours an ulp
+// away on either side, halves, zero of both signs and the ends of its range.
+TEST(FloorInt, MatchesStdFloor) {
+  std::vector<double> xs = {0.0,     -0.0,         0.5,           -0.5,         1e-300,
+                            -1e-300, 2147483646.5, -2147483647.0, -2147483646.5};
+  for (int i = -2100; i <= 2100; ++i) {
+    const double x = i;
+    for (const double v : {x, std::nextafter(x, -1e9), std::nextafter(x, 1e9), x + 0.5})
+      xs.push_back(v);
+  }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-3e6, 3e6);
+  for (int i = 0; i < 10000; ++i) xs.push_back(u(rng));
+  for (const double x : xs)
+    EXPECT_EQ(static_cast<double>(detail::FloorInt(x)), std::floor(x)) << std::hexfloat << x;
+}
+
+// VoxelOf (FloorInt on its quotients) gives the voxel of the floor-and-nudge rule with libm's
+// floor: for points on faces, an ulp off them, and at random.
+TEST(VoxelGrid, VoxelOfIsTheFloorAndNudgeRule) {
+  VoxelGrid g;
+  g.voxel_size_mm = 0.2;
+  g.origin_F = V(-13.37, 4.1, -0.3);
+  g.dims = Eigen::Vector3i(200, 150, 90);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> cell(-5, 205);
+  std::uniform_real_distribution<double> w(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i) {
+    V p;
+    for (int a = 0; a < 3; ++a) {
+      const double face = g.origin_F[a] + g.voxel_size_mm * cell(rng);
+      const int kind = i % 4;
+      p[a] = kind == 0   ? face
+             : kind == 1 ? std::nextafter(face, -1e9)
+             : kind == 2 ? std::nextafter(face, 1e9)
+                         : face + g.voxel_size_mm * w(rng);
+    }
+    const Eigen::Vector3i v = g.VoxelOf(p);
+    for (int a = 0; a < 3; ++a) {
+      double q = std::floor((p[a] - g.origin_F[a]) / g.voxel_size_mm);
+      const double half = 0.5 * g.voxel_size_mm;
+      if (p[a] - (g.origin_F[a] + g.voxel_size_mm * (q + 0.5)) > half) q += 1.0;
+      if (p[a] - (g.origin_F[a] + g.voxel_size_mm * (q + 0.5)) < -half) q -= 1.0;
+      EXPECT_EQ(v[a], static_cast<int>(q)) << p.transpose();
+    }
   }
 }
 

@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "occlude/collision/floor_int.h"
 #include "occlude/collision/key_index_hash.h"
 #include "occlude/collision/voxel_grid.h"
 
@@ -44,11 +45,6 @@ inline constexpr int kBoundBrickEdge = 1 << kBoundBrickBits;
 /// Cell (x, y, z) (each 0..7) of a brick: x + 8 y + 64 z.
 inline int BoundCellIndex(int x, int y, int z) {
   return x | y << kBoundBrickBits | z << (2 * kBoundBrickBits);
-}
-/// floor(x) for |x| < 2^31 without a libm call.
-inline int FloorInt(double x) {
-  const int t = static_cast<int>(x);  // truncation towards zero
-  return t - (x < static_cast<double>(t) ? 1 : 0);
 }
 /// Hash key of brick coordinates b (each in [-2^20, 2^20)).
 inline std::uint64_t BoundBrickKey(const Eigen::Vector3i& b) {

@@ -232,6 +232,8 @@ class JawOracle {
   void BuildLowerSide(std::shared_ptr<const io::TriangleMesh> lower_L, int threads);
   void BuildFieldBound(int threads);
   void BuildInteriorRows();
+  /// interior_lo_L_ and interior_hi_L_ from the lower grid's interior runs (built or loaded).
+  void BoundInterior();
   void BuildUpperSide(std::shared_ptr<const io::TriangleMesh> upper_U, int threads);
   /// The samples of the upper surface, grouped by voxel (CSR), and one per component.
   void PlaceSamples(const io::TriangleMesh& upper_U, int threads);
@@ -280,6 +282,11 @@ class JawOracle {
   // The lower grid's interior runs by row: those of row (y, z) are
   // [interior_row_begin_[y + dims.y z], interior_row_begin_[that + 1]) (empty: no runs).
   std::vector<std::uint32_t> interior_row_begin_;
+  // A box (L, mm) beyond which no point lies in an interior voxel: the interior voxels' box
+  // grown by a voxel on every side (VoxelOf's nudge and rounding stay far within it); empty
+  // (lo > hi) without interior runs. Derived from the runs (BoundInterior), not saved.
+  Eigen::Vector3d interior_lo_L_ = Eigen::Vector3d::Constant(1.0);
+  Eigen::Vector3d interior_hi_L_ = Eigen::Vector3d::Constant(-1.0);
   // A sphere holding every upper sample (centre in U, radius): rules out nesting at once.
   Eigen::Vector3d samples_centre_U_ = Eigen::Vector3d::Zero();
   double samples_radius_ = 0.0;
@@ -298,6 +305,9 @@ void HashOracleResult(const OracleResult& result, io::Hasher64* hash);
 // queries and the planner's settle ask it per sample.
 inline bool JawOracle::LowerInterior(const Eigen::Vector3d& p_L) const {
   if (interior_row_begin_.empty()) return false;
+  for (int a = 0; a < 3; ++a) {  // the cheap answer for most points away from the jaw
+    if (!(p_L[a] >= interior_lo_L_[a] && p_L[a] <= interior_hi_L_[a])) return false;
+  }
   const VoxelGrid& grid = lower_.grid();
   const Eigen::Vector3i v = grid.VoxelOf(p_L);
   if ((v.array() < 0).any() || (v.array() >= grid.dims.array()).any()) return false;
