@@ -77,6 +77,17 @@ TEST(BenchCommandTest, WritesOneRowPerMethodQueryAndOffsetWithTheDocumentedColum
       EXPECT_TRUE(keys.count(std::string("ist,explicit,") + voxel + "," + query + ",0.000,"))
           << query;
     }
+    // The oracle as the commands build it (without the pair queries' trees) beside the
+    // bench's own: smaller by the trees' explicit spheres and the upper's bound.
+    double commands_bytes = 0.0, bench_bytes = 0.0;
+    for (const auto& row : rows) {
+      if (row.at("method") != "ist" || row.at("query") != "build" || row.at("voxel_mm") != voxel)
+        continue;
+      if (row.at("structure") == "commands-oracle") commands_bytes = std::stod(row.at("bytes"));
+      if (row.at("structure") == "oracle") bench_bytes = std::stod(row.at("bytes"));
+    }
+    EXPECT_GT(commands_bytes, 0.0) << voxel;
+    EXPECT_LT(commands_bytes, bench_bytes) << voxel;
   }
   // At the bite pairs exist, fewer 1 mm open; pushed 0.1 mm in, the exact
   // penetration (normal depth, not along the axis) is positive and at most 0.1 mm.
@@ -181,6 +192,15 @@ TEST(BenchCommandTest, OpenVdbRowsSampleTheOracleSamplesAndCountAlike) {
     EXPECT_NEAR(Value(ours, "speedup_vs_openvdb"), ratio, 0.006 + 0.01 * ratio) << key;
   };
   expect_speedup("build@", "levelset:build");
+  bool commands_oracle = false;  // the oracle as the commands build it: against OpenVDB's too
+  for (const auto& row : ReadCsvRows(tmp / "out" / "bench.csv")) {
+    if (row.at("structure") != "commands-oracle") continue;
+    commands_oracle = true;
+    EXPECT_EQ(row.at("openvdb_reference"), "levelset:build");
+    const double ratio = Value(openvdb.at("build@"), "median_us") / Value(row, "median_us");
+    EXPECT_NEAR(Value(row, "speedup_vs_openvdb"), ratio, 0.006 + 0.01 * ratio);
+  }
+  EXPECT_TRUE(commands_oracle);
   for (const char* offset : {"0.500", "0.000", "-0.100", "-0.200"}) {
     const std::string key = std::string("oracle-subvoxel@") + offset;
     ASSERT_TRUE(openvdb.count(key) && ist.count(key)) << key;
