@@ -17,6 +17,7 @@
 #include "occlude/collision/voxel_grid.h"
 #include "session/jaw_checks.h"
 #include "session/memory_guard.h"
+#include "session/region_entry.h"
 
 namespace occlude::app {
 namespace {
@@ -194,6 +195,24 @@ collision::RegionOfInterestRequest CaseSession::RegionRequest(double band_mm) co
   return SessionRegionRequest(config_, X_start, X_start * pivot_L_, band_mm);
 }
 
+collision::RegionOfInterest CaseSession::SelectRegion(double band_mm, double* selector_seconds) {
+  // A warm run reads the selection (a few bytes when a jaw is kept whole) instead of making the
+  // jaws' distance bounds again; either way the same sub-meshes, so the same oracle keys.
+  return MadeOrCached(
+      cache_.get(), kRegionEntryKind,
+      [&] { return RegionEntryKey(*jaws_.lower_L, *jaws_.upper_U, RegionRequest(band_mm)); },
+      [&] {
+        if (!region_) {
+          region_ = std::make_unique<collision::RegionSelector>(jaws_.lower_L, jaws_.upper_U,
+                                                                RegionRequest(0.0));
+          *selector_seconds = region_->seconds();
+        }
+        return region_->Select(band_mm);
+      },
+      EncodeRegion,
+      [&](std::string_view bytes) { return DecodeRegion(bytes, jaws_.lower_L, jaws_.upper_U); });
+}
+
 CaseSession::StageInputs CaseSession::PrepareStage(std::size_t index) {
   collision::OracleOptions base = SessionOracleBase(config_);
   base.arch = arch_;
@@ -203,13 +222,9 @@ CaseSession::StageInputs CaseSession::PrepareStage(std::size_t index) {
   in.lower = jaws_.lower_L;
   in.upper = jaws_.upper_U;
   if (!config_.region_of_interest) return in;
-  double selector_seconds = 0.0;  // the bounds' share, counted with the first region
-  if (!region_) {
-    region_ = std::make_unique<collision::RegionSelector>(jaws_.lower_L, jaws_.upper_U,
-                                                          RegionRequest(0.0));
-    selector_seconds = region_->seconds();
-  }
-  const collision::RegionOfInterest roi = region_->Select(SessionReadRadiusMm(config_, in.options));
+  double selector_seconds = 0.0;  // the bounds' share, counted with the first region made
+  const collision::RegionOfInterest roi =
+      SelectRegion(SessionReadRadiusMm(config_, in.options), &selector_seconds);
   // A jaw that keeps nearly everything is modelled whole (the cut would save little and cost a
   // copy of the mesh), and so is one that keeps nothing (jaws out of each other's reach: an
   // oracle needs a surface).

@@ -135,6 +135,10 @@ class CaseSession {
     std::string what;
   };
   StageInputs PrepareStage(std::size_t index);
+  /// The region of interest of the session's search for an oracle reading `band_mm`: read from
+  /// the cache, else selected (the selector made on first use: its seconds into
+  /// *selector_seconds) and saved.
+  collision::RegionOfInterest SelectRegion(double band_mm, double* selector_seconds);
   /// The stage's oracle, read from the cache or built (thread-safe for different stages).
   std::unique_ptr<collision::JawOracle> BuildStage(const StageInputs& in);
   /// Keeps `oracle` as stage `index`'s and records what it models.

@@ -14,6 +14,7 @@
 #include "occlude/collision/distance_bound.h"
 #include "occlude/collision/voxel_grid.h"
 #include "parallel.h"
+#include "region_code_hash.h"
 #include "voxelize_detail.h"
 
 namespace occlude::collision {
@@ -279,6 +280,36 @@ RegionOfInterest ComputeRegionOfInterest(const std::shared_ptr<const io::Triangl
   const RegionSelector selector(lower_L, upper_U, request);
   RegionOfInterest roi = selector.Select(request.band_mm);
   roi.stats.seconds += selector.seconds();
+  return roi;
+}
+
+const char* RegionSelectionCodeVersion() { return kRegionCodeHash; }
+
+RegionOfInterest RegionOfKept(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                              const std::shared_ptr<const io::TriangleMesh>& upper_U,
+                              std::vector<std::uint32_t> lower_kept,
+                              std::vector<std::uint32_t> upper_kept,
+                              const RegionOfInterestStats& stats) {
+  if (!lower_L || !upper_U) throw std::invalid_argument("RegionOfKept: null mesh");
+  auto check = [](const std::vector<std::uint32_t>& kept, const io::TriangleMesh& mesh,
+                  const char* jaw) {
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (kept[i] >= mesh.num_triangles() || (i > 0 && kept[i] <= kept[i - 1])) {
+        throw std::invalid_argument(std::string("RegionOfKept: the ") + jaw +
+                                    "'s kept triangles are not increasing indices of its mesh");
+      }
+    }
+  };
+  check(lower_kept, *lower_L, "lower");
+  check(upper_kept, *upper_U, "upper");
+  RegionOfInterest roi;
+  roi.stats = stats;
+  roi.stats.lower_kept = lower_kept.size();
+  roi.stats.upper_kept = upper_kept.size();
+  roi.stats.lower_total = lower_L->num_triangles();
+  roi.stats.upper_total = upper_U->num_triangles();
+  roi.lower = SubMesh(lower_L, std::move(lower_kept));
+  roi.upper = SubMesh(upper_U, std::move(upper_kept));
   return roi;
 }
 

@@ -315,6 +315,39 @@ TEST(RegionOfInterest, SelectorGivesEachBandsOwnSelection) {
   EXPECT_THROW(selector.Select(-1.0), std::invalid_argument);
 }
 
+// A selection made again from its kept lists (a saved one, read back) is the selection: the same
+// sub-meshes vertex for vertex (whole meshes shared when nothing is cut) and stats; lists that
+// are not increasing indices of the meshes are refused.
+TEST(RegionOfInterest, RegionOfKeptIsTheSelection) {
+  const Scene& s = Synthetic(/*open_lower=*/true);
+  const RegionSelector selector(s.lower, s.upper, Request(s, 1.0, 2.0, 0.0));
+  for (const double band : {0.5, 1.0, 1000.0}) {
+    const RegionOfInterest made = selector.Select(band);
+    const RegionOfInterest again = RegionOfKept(s.lower, s.upper, made.lower.original_triangle,
+                                                made.upper.original_triangle, made.stats);
+    for (const auto& [a, b] : {std::pair{&made.lower, &again.lower}, {&made.upper, &again.upper}}) {
+      EXPECT_EQ(b->original_triangle, a->original_triangle) << band;
+      EXPECT_EQ(b->mesh->vertices, a->mesh->vertices) << band;
+      EXPECT_EQ(b->mesh->triangles, a->mesh->triangles) << band;
+      EXPECT_EQ(b->mesh->triangle_part, a->mesh->triangle_part) << band;
+      EXPECT_EQ(b->mesh->face_normals.size(), a->mesh->face_normals.size()) << band;
+      EXPECT_EQ(b->mesh == s.lower || b->mesh == s.upper, a->mesh == s.lower || a->mesh == s.upper)
+          << band;
+    }
+    EXPECT_EQ(again.stats.reach_mm, made.stats.reach_mm);
+    EXPECT_EQ(again.stats.lower_kept, made.stats.lower_kept);
+    EXPECT_EQ(again.stats.upper_total, made.stats.upper_total);
+  }
+  EXPECT_LT(selector.Select(0.5).stats.lower_kept, s.lower->num_triangles());  // a real cut
+  const RegionOfInterestStats stats;
+  EXPECT_THROW(RegionOfKept(s.lower, s.upper, {2, 1}, {}, stats), std::invalid_argument);
+  EXPECT_THROW(RegionOfKept(s.lower, s.upper, {1, 1}, {}, stats), std::invalid_argument);
+  EXPECT_THROW(RegionOfKept(s.lower, s.upper, {},
+                            {static_cast<std::uint32_t>(s.upper->num_triangles())}, stats),
+               std::invalid_argument);
+  EXPECT_THROW(RegionOfKept(nullptr, s.upper, {}, {}, stats), std::invalid_argument);
+}
+
 TEST(RegionOfInterest, HugeBoundsKeepEverything) {
   const Scene& s = Synthetic();
   const RegionOfInterest roi =

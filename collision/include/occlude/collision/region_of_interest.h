@@ -103,6 +103,22 @@ class RegionSelector {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The region a selection kept, made again from its kept triangles (each jaw's
+/// RegionMesh::original_triangle, whole-mesh indices in increasing order) and its stats: the
+/// same sub-meshes, vertex for vertex, as the selection gave (a saved selection, read back).
+/// The stats' kept counts are set from the lists. Throws std::invalid_argument for a null mesh
+/// or a list that is not increasing or names a triangle the mesh does not have.
+RegionOfInterest RegionOfKept(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                              const std::shared_ptr<const io::TriangleMesh>& upper_U,
+                              std::vector<std::uint32_t> lower_kept,
+                              std::vector<std::uint32_t> upper_kept,
+                              const RegionOfInterestStats& stats);
+
+/// 16 hex digits that change whenever the selection's code does (a hash of its sources: the
+/// selection, the voxelization and distance bounds it builds on, the mesh transform; made by the
+/// build): what a saved selection is keyed by besides the meshes and the request.
+const char* RegionSelectionCodeVersion();
+
 /// The farthest (mm) a JawOracle built with `options` reads the lower jaw around an upper
 /// sample (or the lower jaw's surface voxels, its field corners' closest points and their
 /// pseudo-normals), at every accuracy level, for requests whose exact-level search reach
