@@ -27,18 +27,18 @@ namespace fs = std::filesystem;
 using collision::RegionOfInterest;
 using collision::RegionOfInterestRequest;
 
-struct Pair {
+struct RegionTestPair {
   std::shared_ptr<const io::TriangleMesh> lower_L, upper_U;
   Eigen::Isometry3d X_bite = Eigen::Isometry3d::Identity();
 };
 
-const Pair& Synthetic() {
-  static const Pair pair = [] {
+const RegionTestPair& RegionTestJaws() {
+  static const RegionTestPair pair = [] {
     io::SyntheticJawOptions options;
     options.triangles_per_jaw = 5000;
     options.seed = 2;
     io::SyntheticJawPair made = io::MakeSyntheticJawPair(options);
-    Pair p;
+    RegionTestPair p;
     p.X_bite = made.X_LU;
     p.lower_L = std::make_shared<io::TriangleMesh>(std::move(made.lower_L));
     p.upper_U = std::make_shared<io::TriangleMesh>(std::move(made.upper_U));
@@ -47,10 +47,10 @@ const Pair& Synthetic() {
   return pair;
 }
 
-RegionOfInterestRequest Request(double band_mm) {
+RegionOfInterestRequest RegionTestRequest(double band_mm) {
   RegionOfInterestRequest r;
-  r.X_LU_start = Synthetic().X_bite;
-  r.pivot_L = Synthetic().X_bite.translation();
+  r.X_LU_start = RegionTestJaws().X_bite;
+  r.pivot_L = RegionTestJaws().X_bite.translation();
   for (std::size_t d = 0; d < 6; ++d) {
     r.bound_min[d] = d < 3 ? -1.0 : -2.0;
     r.bound_max[d] = d < 3 ? 1.0 : 2.0;
@@ -64,8 +64,8 @@ void ExpectSameRegion(const RegionOfInterest& a, const RegionOfInterest& b) {
     EXPECT_EQ(y->original_triangle, x->original_triangle);
     EXPECT_EQ(io::MeshContentHash(*y->mesh), io::MeshContentHash(*x->mesh));
   }
-  EXPECT_EQ(a.lower.mesh == Synthetic().lower_L, b.lower.mesh == Synthetic().lower_L);
-  EXPECT_EQ(a.upper.mesh == Synthetic().upper_U, b.upper.mesh == Synthetic().upper_U);
+  EXPECT_EQ(a.lower.mesh == RegionTestJaws().lower_L, b.lower.mesh == RegionTestJaws().lower_L);
+  EXPECT_EQ(a.upper.mesh == RegionTestJaws().upper_U, b.upper.mesh == RegionTestJaws().upper_U);
   EXPECT_EQ(a.stats.band_mm, b.stats.band_mm);
   EXPECT_EQ(a.stats.displacement_mm, b.stats.displacement_mm);
   EXPECT_EQ(a.stats.reach_mm, b.stats.reach_mm);
@@ -75,11 +75,11 @@ void ExpectSameRegion(const RegionOfInterest& a, const RegionOfInterest& b) {
 }
 
 TEST(RegionEntryTest, DecodesToTheSelectionCutAndWhole) {
-  const Pair& p = Synthetic();
+  const RegionTestPair& p = RegionTestJaws();
   std::size_t cut = 0;
   for (const double band : {0.3, 1.0, 1000.0}) {
     const RegionOfInterest made =
-        collision::ComputeRegionOfInterest(p.lower_L, p.upper_U, Request(band));
+        collision::ComputeRegionOfInterest(p.lower_L, p.upper_U, RegionTestRequest(band));
     cut += made.stats.lower_total - made.stats.lower_kept + made.stats.upper_total -
            made.stats.upper_kept;
     const RegionOfInterest read = DecodeRegion(EncodeRegion(made), p.lower_L, p.upper_U);
@@ -90,9 +90,9 @@ TEST(RegionEntryTest, DecodesToTheSelectionCutAndWhole) {
 }
 
 TEST(RegionEntryTest, MalformedEntriesThrow) {
-  const Pair& p = Synthetic();
-  const std::string good =
-      EncodeRegion(collision::ComputeRegionOfInterest(p.lower_L, p.upper_U, Request(0.3)));
+  const RegionTestPair& p = RegionTestJaws();
+  const std::string good = EncodeRegion(
+      collision::ComputeRegionOfInterest(p.lower_L, p.upper_U, RegionTestRequest(0.3)));
   ASSERT_GT(good.size(), 40u);
   auto throws = [&](const std::string& bytes) {
     EXPECT_THROW(DecodeRegion(bytes, p.lower_L, p.upper_U), std::runtime_error);
@@ -118,8 +118,8 @@ TEST(RegionEntryTest, MalformedEntriesThrow) {
 }
 
 TEST(RegionEntryTest, KeyChangesWithAMeshByteAndEveryRequestField) {
-  const Pair& p = Synthetic();
-  const RegionOfInterestRequest base = Request(1.0);
+  const RegionTestPair& p = RegionTestJaws();
+  const RegionOfInterestRequest base = RegionTestRequest(1.0);
   const std::uint64_t key = RegionEntryKey(*p.lower_L, *p.upper_U, base);
   EXPECT_EQ(RegionEntryKey(*p.lower_L, *p.upper_U, base), key);
   io::TriangleMesh moved = *p.upper_U;
@@ -138,14 +138,14 @@ TEST(RegionEntryTest, KeyChangesWithAMeshByteAndEveryRequestField) {
 }
 
 // The models a session lists and the answers of its finest oracle, for comparing sessions.
-struct SessionView {
+struct RegionTestSession {
   std::vector<collision::RegionOfInterestStats> regions;
   std::uint64_t answers = 0;
 };
 
-SessionView View(const CaseConfig& config) {
+RegionTestSession ViewOfSession(const CaseConfig& config) {
   CaseSession session(config);
-  SessionView v;
+  RegionTestSession v;
   const planner::OracleSchedule& schedule = session.Schedule();
   for (const OracleModel& m : session.Models()) {
     EXPECT_TRUE(m.region.has_value());
@@ -174,7 +174,7 @@ TEST(RegionEntryTest, SessionReadsItsSelectionsFromAWarmCache) {
       "tz_mm = [-1, 1]\nrx_deg = [-2, 2]\nry_deg = [-2, 2]\nrz_deg = [-2, 2]\n",
       "synthetic.toml");
   config.cache_folder = dir.path();
-  const SessionView cold = View(config);
+  const RegionTestSession cold = ViewOfSession(config);
   ASSERT_EQ(cold.regions.size(), 3u);
   EXPECT_EQ(RegionEntries(dir.path()).size(), 3u);  // one selection per stage's band
   for (const bool garbled : {false, true}) {
@@ -186,7 +186,7 @@ TEST(RegionEntryTest, SessionReadsItsSelectionsFromAWarmCache) {
       f.seekp(-1, std::ios::end);
       f.put('\x5a');
     }
-    const SessionView warm = View(config);
+    const RegionTestSession warm = ViewOfSession(config);
     ASSERT_EQ(warm.regions.size(), cold.regions.size());
     for (std::size_t i = 0; i < warm.regions.size(); ++i) {
       EXPECT_EQ(warm.regions[i].reach_mm, cold.regions[i].reach_mm) << i;
