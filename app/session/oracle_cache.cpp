@@ -15,6 +15,7 @@
 #include "occlude/io/atomic_file.h"
 #include "occlude/io/content_hash.h"
 #include "occlude/io/mesh_io.h"
+#include "session/byte_fields.h"
 
 namespace occlude::app {
 namespace fs = std::filesystem;
@@ -56,17 +57,6 @@ bool IsCacheEntry(const fs::path& file) {
   char magic[8] = {};
   const char* expected = kind == kOracleKind ? kSavedOracleMagic : kByteEntryMagic;
   return in.read(magic, sizeof magic) && std::equal(magic, magic + 8, expected);
-}
-
-template <typename T>
-void PutValue(std::string* out, T value) {
-  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-template <typename T>
-T ValueAt(std::string_view bytes, std::size_t at) {
-  T value{};
-  std::memcpy(&value, bytes.data() + at, sizeof(T));
-  return value;
 }
 
 // The whole file, or nullopt when it cannot be opened or read.

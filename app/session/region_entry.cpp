@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "occlude/io/content_hash.h"
+#include "session/byte_fields.h"
 
 namespace occlude::app {
 namespace {
@@ -17,18 +18,13 @@ namespace {
 constexpr std::uint32_t kEncodingVersion = 1;
 constexpr std::uint32_t kWhole = std::numeric_limits<std::uint32_t>::max();
 
-template <typename T>
-void Put(const T& value, std::string* out) {
-  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
 void PutKept(const collision::RegionMesh& jaw, std::size_t total, std::string* out) {
   const std::vector<std::uint32_t>& kept = jaw.original_triangle;
   if (kept.size() == total && total > 0) {  // the whole mesh (shared, not copied)
-    Put(kWhole, out);
+    PutValue(out, kWhole);
     return;
   }
-  Put(static_cast<std::uint32_t>(kept.size()), out);
+  PutValue(out, static_cast<std::uint32_t>(kept.size()));
   out->append(reinterpret_cast<const char*>(kept.data()), kept.size() * sizeof(std::uint32_t));
 }
 
@@ -38,8 +34,9 @@ class Reader {
   explicit Reader(std::string_view bytes) : bytes_(bytes) {}
   template <typename T>
   T Get() {
-    T value;
-    Take(&value, sizeof(T));
+    Need(sizeof(T));
+    const T value = ValueAt<T>(bytes_, at_);
+    at_ += sizeof(T);
     return value;
   }
   std::vector<std::uint32_t> Kept(std::size_t total) {
@@ -51,7 +48,9 @@ class Reader {
     }
     if (count > total) throw std::runtime_error("more kept triangles than the mesh has");
     std::vector<std::uint32_t> kept(count);
-    Take(kept.data(), kept.size() * sizeof(std::uint32_t));
+    Need(kept.size() * sizeof(std::uint32_t));
+    std::memcpy(kept.data(), bytes_.data() + at_, kept.size() * sizeof(std::uint32_t));
+    at_ += kept.size() * sizeof(std::uint32_t);
     return kept;
   }
   void ExpectEnd() const {
@@ -59,10 +58,8 @@ class Reader {
   }
 
  private:
-  void Take(void* to, std::size_t size) {
+  void Need(std::size_t size) const {
     if (bytes_.size() - at_ < size) throw std::runtime_error("truncated selection");
-    std::memcpy(to, bytes_.data() + at_, size);
-    at_ += size;
   }
   std::string_view bytes_;
   std::size_t at_ = 0;
@@ -94,9 +91,9 @@ std::uint64_t RegionEntryKey(const io::TriangleMesh& lower_L, const io::Triangle
 
 std::string EncodeRegion(const collision::RegionOfInterest& roi) {
   std::string out;
-  Put(kEncodingVersion, &out);
+  PutValue(&out, kEncodingVersion);
   for (const double v : {roi.stats.band_mm, roi.stats.displacement_mm, roi.stats.reach_mm})
-    Put(v, &out);
+    PutValue(&out, v);
   PutKept(roi.lower, roi.stats.lower_total, &out);
   PutKept(roi.upper, roi.stats.upper_total, &out);
   return out;

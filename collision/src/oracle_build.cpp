@@ -101,16 +101,16 @@ void JawOracle::BuildInteriorRows() {
 
 void JawOracle::BoundInterior() {
   const VoxelGrid& grid = lower_.grid();
+  if (grid.interior_runs.empty()) {  // the empty box
+    interior_lo_L_ = Eigen::Vector3d::Constant(1.0);
+    interior_hi_L_ = Eigen::Vector3d::Constant(-1.0);
+    return;
+  }
   Eigen::Vector3i lo = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
   Eigen::Vector3i hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
   for (const VoxelRun& r : grid.interior_runs) {
     lo = lo.cwiseMin(Eigen::Vector3i(r.x_begin, r.y, r.z));
     hi = hi.cwiseMax(Eigen::Vector3i(r.x_end - 1, r.y, r.z));
-  }
-  if (grid.interior_runs.empty()) {
-    interior_lo_L_ = Eigen::Vector3d::Constant(1.0);
-    interior_hi_L_ = Eigen::Vector3d::Constant(-1.0);
-    return;
   }
   // Voxel v's cube is [origin + s v, origin + s (v + 1)]; one voxel more on every side.
   interior_lo_L_ = grid.origin_F + grid.voxel_size_mm * (lo.cast<double>().array() - 1.0).matrix();

@@ -16,8 +16,8 @@
 
 #include "config/case_config.h"
 #include "occlude/io/content_hash.h"
-#include "occlude/io/synthetic_jaws.h"
 #include "session/case_session.h"
+#include "session/jaw_pair.h"
 #include "test_common.h"
 
 namespace occlude::app {
@@ -27,30 +27,16 @@ namespace fs = std::filesystem;
 using collision::RegionOfInterest;
 using collision::RegionOfInterestRequest;
 
-struct RegionTestPair {
-  std::shared_ptr<const io::TriangleMesh> lower_L, upper_U;
-  Eigen::Isometry3d X_bite = Eigen::Isometry3d::Identity();
-};
-
-const RegionTestPair& RegionTestJaws() {
-  static const RegionTestPair pair = [] {
-    io::SyntheticJawOptions options;
-    options.triangles_per_jaw = 5000;
-    options.seed = 2;
-    io::SyntheticJawPair made = io::MakeSyntheticJawPair(options);
-    RegionTestPair p;
-    p.X_bite = made.X_LU;
-    p.lower_L = std::make_shared<io::TriangleMesh>(std::move(made.lower_L));
-    p.upper_U = std::make_shared<io::TriangleMesh>(std::move(made.upper_U));
-    return p;
-  }();
+// The app's synthetic pair (session/jaw_pair.h), 5,000 triangles a jaw, seed 2.
+const JawPair& RegionTestJaws() {
+  static const JawPair pair = SyntheticJawPair(5000, 2);
   return pair;
 }
 
 RegionOfInterestRequest RegionTestRequest(double band_mm) {
   RegionOfInterestRequest r;
-  r.X_LU_start = RegionTestJaws().X_bite;
-  r.pivot_L = RegionTestJaws().X_bite.translation();
+  r.X_LU_start = RegionTestJaws().X_LU_ref;
+  r.pivot_L = RegionTestJaws().X_LU_ref.translation();
   for (std::size_t d = 0; d < 6; ++d) {
     r.bound_min[d] = d < 3 ? -1.0 : -2.0;
     r.bound_max[d] = d < 3 ? 1.0 : 2.0;
@@ -75,7 +61,7 @@ void ExpectSameRegion(const RegionOfInterest& a, const RegionOfInterest& b) {
 }
 
 TEST(RegionEntryTest, DecodesToTheSelectionCutAndWhole) {
-  const RegionTestPair& p = RegionTestJaws();
+  const JawPair& p = RegionTestJaws();
   std::size_t cut = 0;
   for (const double band : {0.3, 1.0, 1000.0}) {
     const RegionOfInterest made =
@@ -90,7 +76,7 @@ TEST(RegionEntryTest, DecodesToTheSelectionCutAndWhole) {
 }
 
 TEST(RegionEntryTest, MalformedEntriesThrow) {
-  const RegionTestPair& p = RegionTestJaws();
+  const JawPair& p = RegionTestJaws();
   const std::string good = EncodeRegion(
       collision::ComputeRegionOfInterest(p.lower_L, p.upper_U, RegionTestRequest(0.3)));
   ASSERT_GT(good.size(), 40u);
@@ -118,7 +104,7 @@ TEST(RegionEntryTest, MalformedEntriesThrow) {
 }
 
 TEST(RegionEntryTest, KeyChangesWithAMeshByteAndEveryRequestField) {
-  const RegionTestPair& p = RegionTestJaws();
+  const JawPair& p = RegionTestJaws();
   const RegionOfInterestRequest base = RegionTestRequest(1.0);
   const std::uint64_t key = RegionEntryKey(*p.lower_L, *p.upper_U, base);
   EXPECT_EQ(RegionEntryKey(*p.lower_L, *p.upper_U, base), key);
