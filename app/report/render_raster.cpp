@@ -123,15 +123,20 @@ bool IsBackFace(const Vertex2& a, const Vertex2& b, const Vertex2& c) {
   return Edge(a, b, c.x, c.y) > 0;
 }
 
-// The order to draw a mesh's triangles in: front faces first, so that the back faces behind
-// them fail the depth test before they are shaded; within each, tile by tile of the image (16
-// x 16 pixels, row-major, by the triangle's first vertex; the mesh's order within a tile), so
-// that consecutive triangles touch pixels already in the cache. A pixel's nearest surface does
-// not depend on the order (only exact ties in depth would).
+// The order to draw a mesh's triangles in, as groups: the front faces of the nearer half of
+// the mesh's depth range (by the triangle's first vertex), those of the farther half, then the
+// back faces; from the second group on, each is culled by the blocks' farthest depth drawn
+// before it (BlockDepthBound), which hides most of the farther half in a side view and most
+// back faces. Within a group, tile by tile of the image (16 x 16 pixels, row-major, by the
+// first vertex; the mesh's order within a tile), so that consecutive triangles touch pixels
+// already in the cache. A pixel's nearest surface does not depend on the order (only exact
+// ties in depth would).
 struct DrawOrder {
-  std::vector<std::size_t> triangles;  ///< front faces, then back faces
-  std::size_t front = 0;               ///< how many front faces lead
+  std::vector<std::size_t> triangles;  ///< the groups one after the other
+  std::vector<std::size_t> group_end;  ///< where each group ends in `triangles`
 };
+
+constexpr int kFrontGroups = 2;  ///< depth slices of the front faces (more cost more bounds)
 
 DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2>& v, int width,
                          int height) {
@@ -139,8 +144,15 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
   const int tiles_x = width / kTile + 1;
   const int tiles_y = height / kTile + 1;
   const auto tiles = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
+  double dmin = std::numeric_limits<double>::infinity(), dmax = -dmin;
+  for (const Vertex2& p : v) {
+    dmin = std::min(dmin, p.depth);
+    dmax = std::max(dmax, p.depth);
+  }
+  const double to_slice = dmax > dmin ? kFrontGroups / (dmax - dmin) : 0.0;
+  const std::size_t groups = (kFrontGroups + 1) * tiles;
   std::vector<std::size_t> key(mesh.num_triangles());
-  std::vector<std::size_t> start(2 * tiles + 1, 0);
+  std::vector<std::size_t> start(groups + 1, 0);
   for (std::size_t t = 0; t < key.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     const Vertex2& a = v[static_cast<std::size_t>(tri[0])];
@@ -148,13 +160,18 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
     const int ty = std::clamp(static_cast<int>(a.y) / kTile, 0, tiles_y - 1);
     const bool back =
         IsBackFace(a, v[static_cast<std::size_t>(tri[1])], v[static_cast<std::size_t>(tri[2])]);
-    key[t] = (back ? tiles : 0) + static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x) +
+    const int group =
+        back ? kFrontGroups
+             : std::clamp(static_cast<int>((a.depth - dmin) * to_slice), 0, kFrontGroups - 1);
+    key[t] = static_cast<std::size_t>(group) * tiles +
+             static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x) +
              static_cast<std::size_t>(tx);
     ++start[key[t] + 1];
   }
   for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
   DrawOrder order;
-  order.front = start[tiles];
+  for (std::size_t group = 1; group <= kFrontGroups + 1; ++group)
+    order.group_end.push_back(start[group * tiles]);
   order.triangles.resize(key.size());
   for (std::size_t t = 0; t < key.size(); ++t) order.triangles[start[key[t]]++] = t;
   return order;
@@ -162,8 +179,8 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
 
 // The farthest depth drawn in each 8 x 8 block of pixels (infinity while a pixel of it is
 // empty): a triangle no nearer than that anywhere in its box would fail every depth test.
-// Made after a mesh's front faces, it is kept for its back faces (depths only decrease, so a
-// block's bound only grows stale on the safe side); most of them lie behind the front faces.
+// Made before each group of a DrawOrder but the first drawn, it is kept while the group is drawn
+// (depths only decrease, so a block's bound only grows stale on the safe side).
 class BlockDepthBound {
  public:
   static constexpr int kBlock = 8;
@@ -173,12 +190,21 @@ class BlockDepthBound {
         far_(static_cast<std::size_t>(blocks_x_) *
                  static_cast<std::size_t>((g.height + kBlock - 1) / kBlock),
              -std::numeric_limits<float>::infinity()) {
-    for (int y = 0; y < g.height; ++y) {
+    // Per block row: each column's farthest depth over the row's pixel rows (element by
+    // element, which the compiler vectorizes), then each block's over its columns.
+    std::vector<float> column(static_cast<std::size_t>(g.width));
+    for (int y0 = 0; y0 < g.height; y0 += kBlock) {
+      std::fill(column.begin(), column.end(), -std::numeric_limits<float>::infinity());
+      for (int y = y0; y < std::min(g.height, y0 + kBlock); ++y) {
+        const float* depth =
+            &g.depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width)];
+        for (std::size_t x = 0; x < column.size(); ++x)
+          column[x] = column[x] < depth[x] ? depth[x] : column[x];
+      }
       float* row =
-          &far_[static_cast<std::size_t>(y / kBlock) * static_cast<std::size_t>(blocks_x_)];
-      const float* depth =
-          &g.depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width)];
-      for (int x = 0; x < g.width; ++x) row[x / kBlock] = std::max(row[x / kBlock], depth[x]);
+          &far_[static_cast<std::size_t>(y0 / kBlock) * static_cast<std::size_t>(blocks_x_)];
+      for (int x = 0; x < g.width; ++x)
+        row[x / kBlock] = std::max(row[x / kBlock], column[static_cast<std::size_t>(x)]);
     }
   }
 
@@ -275,6 +301,7 @@ GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces) {
   // Light from near the viewer, a little from above and the right, for relief.
   const Eigen::Vector3f light =
       (-view.view_L + 0.35 * view.up_L + 0.25 * view.right_L).normalized().cast<float>();
+  bool empty = true;  // nothing drawn yet: no bound to cull by
   for (const Surface& s : surfaces) {
     const io::TriangleMesh& mesh = *s.mesh;
     const std::vector<Eigen::Vector3f> normals = VertexNormals(mesh);
@@ -297,43 +324,20 @@ GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces) {
         DrawTriangle(a, b, c, IsBackFace(a, b, c), light, static_cast<std::int16_t>(s.id), &g);
       }
     };
-    draw(0, order.front, nullptr);
-    const BlockDepthBound bound(g);
-    draw(order.front, order.triangles.size(), &bound);
-  }
-  return g;
-}
-
-Image Resolve(const GBuffer& g, const std::function<Rgb(int id, float value)>& colour,
-              Rgb background, int factor) {
-  const int w = g.width / factor;
-  const int h = g.height / factor;
-  Image out(w, h, background);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      float acc[3] = {0, 0, 0};
-      for (int dy = 0; dy < factor; ++dy) {
-        for (int dx = 0; dx < factor; ++dx) {
-          const std::size_t i =
-              static_cast<std::size_t>(y * factor + dy) * static_cast<std::size_t>(g.width) +
-              static_cast<std::size_t>(x * factor + dx);
-          if (g.id[i] < 0) {
-            for (int k = 0; k < 3; ++k) acc[k] += background[static_cast<std::size_t>(k)];
-            continue;
-          }
-          const Rgb c = colour(g.id[i], g.value[i]);
-          for (int k = 0; k < 3; ++k)
-            acc[k] += std::min(255.0f, c[static_cast<std::size_t>(k)] * g.shade[i]);
-        }
+    std::size_t from = 0;
+    for (const std::size_t end : order.group_end) {
+      if (from == end) continue;
+      if (empty) {
+        draw(from, end, nullptr);
+      } else {
+        const BlockDepthBound bound(g);
+        draw(from, end, &bound);
       }
-      const float norm = 1.0f / static_cast<float>(factor * factor);
-      out.Set(x, y,
-              {static_cast<std::uint8_t>(acc[0] * norm + 0.5f),
-               static_cast<std::uint8_t>(acc[1] * norm + 0.5f),
-               static_cast<std::uint8_t>(acc[2] * norm + 0.5f)});
+      empty = false;
+      from = end;
     }
   }
-  return out;
+  return g;
 }
 
 }  // namespace occlude::app::render

@@ -9,9 +9,9 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "occlude/io/triangle_mesh.h"
@@ -90,11 +90,40 @@ struct GBuffer {
 /// the viewer, back faces darker).
 GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces);
 
-/// Colours a G-buffer: colour(id, value) times the pixel's shade, `background`
-/// where nothing was drawn; then averages `factor` x `factor` blocks (the
-/// supersampling factor the view was scaled by).
-Image Resolve(const GBuffer& g, const std::function<Rgb(int id, float value)>& colour,
-              Rgb background, int factor);
+/// Colours a G-buffer: colour(id, value) -> Rgb times the pixel's shade, `background` where
+/// nothing was drawn; then averages `factor` x `factor` blocks (the supersampling factor the
+/// view was scaled by). A template, so that the colour of each of the millions of sub-pixels is
+/// an inlined call.
+template <typename Colour>
+Image Resolve(const GBuffer& g, const Colour& colour, Rgb background, int factor) {
+  const int w = g.width / factor;
+  const int h = g.height / factor;
+  Image out(w, h, background);
+  const float norm = 1.0f / static_cast<float>(factor * factor);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float acc[3] = {0, 0, 0};
+      for (int dy = 0; dy < factor; ++dy) {
+        const std::size_t row =
+            static_cast<std::size_t>(y * factor + dy) * static_cast<std::size_t>(g.width);
+        for (int dx = 0; dx < factor; ++dx) {
+          const std::size_t i = row + static_cast<std::size_t>(x * factor + dx);
+          if (g.id[i] < 0) {
+            for (std::size_t k = 0; k < 3; ++k) acc[k] += background[k];
+            continue;
+          }
+          const Rgb c = colour(static_cast<int>(g.id[i]), g.value[i]);
+          for (std::size_t k = 0; k < 3; ++k) acc[k] += std::min(255.0f, c[k] * g.shade[i]);
+        }
+      }
+      out.Set(x, y,
+              {static_cast<std::uint8_t>(acc[0] * norm + 0.5f),
+               static_cast<std::uint8_t>(acc[1] * norm + 0.5f),
+               static_cast<std::uint8_t>(acc[2] * norm + 0.5f)});
+    }
+  }
+  return out;
+}
 
 /// Area-weighted unit vertex normals of a mesh (in its own frame).
 std::vector<Eigen::Vector3f> VertexNormals(const io::TriangleMesh& mesh);

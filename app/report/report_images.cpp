@@ -85,8 +85,9 @@ render::OrthoView FitToWidth(const Eigen::Vector3d& view, const Eigen::Vector3d&
   return render::FitView(view, up, pts, width, h, kMargin);
 }
 
+template <typename Colour>
 render::Image Draw(const render::OrthoView& view, const std::vector<render::Surface>& surfaces,
-                   const std::function<render::Rgb(int, float)>& colour) {
+                   const Colour& colour) {
   render::OrthoView ss = view.Scaled(kSupersample);
   return render::Resolve(render::Rasterize(ss, surfaces), colour, render::kBackground,
                          kSupersample);
