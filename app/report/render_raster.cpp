@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "occlude/collision/floor_int.h"
+
 namespace occlude::app::render {
 namespace {
 
@@ -16,6 +18,22 @@ struct Vertex2 {
   float value;
   Eigen::Vector3f n;
 };
+
+using collision::detail::FloorInt;
+int CeilInt(double x) { return -FloorInt(-x); }
+
+// The pixels DrawTriangle may test for (a, b, c): its vertices' box widened to whole pixels,
+// clipped to the image (empty when x0 > x1 or y0 > y1).
+struct PixelBox {
+  int x0, x1, y0, y1;
+};
+
+PixelBox BoxOf(const Vertex2& a, const Vertex2& b, const Vertex2& c, int width, int height) {
+  return {std::max(0, FloorInt(std::min({a.x, b.x, c.x}))),
+          std::min(width - 1, CeilInt(std::max({a.x, b.x, c.x}))),
+          std::max(0, FloorInt(std::min({a.y, b.y, c.y}))),
+          std::min(height - 1, CeilInt(std::max({a.y, b.y, c.y})))};
+}
 
 double Edge(const Vertex2& a, const Vertex2& b, double px, double py) {
   return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
@@ -79,10 +97,7 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
   const Weight wb = OppositeWeight(c, a, inv_area).WithInverse();
   const Weight wc = Weight{-(wa.x + wb.x), -(wa.y + wb.y), 1.0 - wa.k - wb.k}.WithInverse();
   const double slack = SpanSlack(wa, wb, wc, g->width, g->height);
-  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
-  const int x1 = std::min(g->width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
-  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
-  const int y1 = std::min(g->height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+  const auto [x0, x1, y0, y1] = BoxOf(a, b, c, g->width, g->height);
   for (int y = y0; y <= y1; ++y) {
     const double py = y + 0.5;
     // The row's pixel centres inside the triangle, found from its three edges and widened by
@@ -92,8 +107,8 @@ void DrawTriangle(const Vertex2& a, const Vertex2& b, const Vertex2& c, bool bac
     if (!ClipSpan(wa, py, &lo, &hi) || !ClipSpan(wb, py, &lo, &hi) || !ClipSpan(wc, py, &lo, &hi) ||
         lo > hi + 2.0 * slack)
       continue;
-    const int xs = std::max(x0, static_cast<int>(std::ceil(lo - 0.5 - slack)));
-    const int xe = std::min(x1, static_cast<int>(std::floor(hi - 0.5 + slack)));
+    const int xs = std::max(x0, CeilInt(lo - 0.5 - slack));
+    const int xe = std::min(x1, FloorInt(hi - 0.5 + slack));
     for (int x = xs; x <= xe; ++x) {
       const double px = x + 0.5;
       const double ua = wa.At(px, py);
@@ -132,8 +147,8 @@ bool IsBackFace(const Vertex2& a, const Vertex2& b, const Vertex2& c) {
 // already in the cache. A pixel's nearest surface does not depend on the order (only exact
 // ties in depth would).
 struct DrawOrder {
-  std::vector<std::size_t> triangles;  ///< the groups one after the other
-  std::vector<std::size_t> group_end;  ///< where each group ends in `triangles`
+  std::vector<Eigen::Vector3i> triangles;  ///< the mesh's triangles, group after group
+  std::vector<std::size_t> group_end;      ///< where each group ends in `triangles`
 };
 
 constexpr int kFrontGroups = 2;  ///< depth slices of the front faces (more cost more bounds)
@@ -173,7 +188,7 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
   for (std::size_t group = 1; group <= kFrontGroups + 1; ++group)
     order.group_end.push_back(start[group * tiles]);
   order.triangles.resize(key.size());
-  for (std::size_t t = 0; t < key.size(); ++t) order.triangles[start[key[t]]++] = t;
+  for (std::size_t t = 0; t < key.size(); ++t) order.triangles[start[key[t]]++] = mesh.triangles[t];
   return order;
 }
 
@@ -211,10 +226,7 @@ class BlockDepthBound {
   /// True when every pixel DrawTriangle could test for (a, b, c) holds a surface nearer than
   /// the triangle's nearest vertex (by a margin far above the rounding of interpolated depths).
   bool Hides(const Vertex2& a, const Vertex2& b, const Vertex2& c, int width, int height) const {
-    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
-    const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
-    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
-    const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+    const auto [x0, x1, y0, y1] = BoxOf(a, b, c, width, height);
     if (x0 > x1 || y0 > y1) return true;  // off the image: DrawTriangle tests no pixel
     const double nearest = std::min({a.depth, b.depth, c.depth});
     const double bound = nearest - 1e-6 * (1.0 + std::abs(nearest));
@@ -316,7 +328,7 @@ GBuffer Rasterize(const OrthoView& view, const std::vector<Surface>& surfaces) {
     const DrawOrder order = OrderTriangles(mesh, v, g.width, g.height);
     const auto draw = [&](std::size_t from, std::size_t to, const BlockDepthBound* bound) {
       for (std::size_t k = from; k < to; ++k) {
-        const auto& tri = mesh.triangles[order.triangles[k]];
+        const Eigen::Vector3i& tri = order.triangles[k];
         const Vertex2& a = v[static_cast<std::size_t>(tri[0])];
         const Vertex2& b = v[static_cast<std::size_t>(tri[1])];
         const Vertex2& c = v[static_cast<std::size_t>(tri[2])];
