@@ -5,8 +5,10 @@
 #include <cmath>
 #include <ctime>
 #include <unordered_map>
+#include <vector>
 
 #include "occlude/clock.h"
+#include "occlude/collision/floor_int.h"
 #include "search_internal.h"
 
 namespace occlude::planner::detail {
@@ -25,13 +27,11 @@ struct Cluster {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // area-weighted
   double area = 0.0;
   std::int32_t part = 0;
-  std::uint32_t order = 0;  // first insertion, for a deterministic output order
 };
 
 std::uint64_t CellKey(const Eigen::Vector3d& p, double spacing) {
   auto c = [&](double v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / spacing)) +
-                                      (1 << 20)) &
+    return static_cast<std::uint64_t>(collision::detail::FloorInt64(v / spacing) + (1 << 20)) &
            0x1fffff;
   };
   return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
@@ -45,24 +45,31 @@ SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry
   const Eigen::Vector3d down_U = -(X_LU.linear().transpose() * occlusal_L).normalized();
   double lowest = -1e300;
   for (const auto& v : upper_U.vertices) lowest = std::max(lowest, v.dot(down_U));
-  std::unordered_map<std::uint64_t, Cluster> cells;
-  std::uint32_t next = 0;
+  // The clusters in the order of their first sample (a deterministic output order), and where
+  // each cell's cluster is.
+  std::vector<Cluster> clusters;
+  std::unordered_map<std::uint64_t, std::uint32_t> cell_cluster;
+  cell_cluster.reserve(upper_U.num_triangles() / 2);
   for (std::size_t t = 0; t < upper_U.num_triangles(); ++t) {
     const Eigen::Vector3d a = upper_U.corner(t, 0), b = upper_U.corner(t, 1),
                           c = upper_U.corner(t, 2);
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    if (n.norm() <= 0.0 || n.normalized().dot(down_U) < -0.3) continue;
     if (lowest - (a + b + c).dot(down_U) / 3.0 > crown_depth_mm) continue;
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double n_norm = n.norm();
+    const Eigen::Vector3d unit_n = n.normalized();
+    if (n_norm <= 0.0 || unit_n.dot(down_U) < -0.3) continue;
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing_mm)));
-    const double area = 0.5 * n.norm() / (k * k);
-    const Eigen::Vector3d u = (b - a) / k, w = (c - a) / k, unit_n = n.normalized();
+    const double area = 0.5 * n_norm / (k * k);
+    const Eigen::Vector3d u = (b - a) / k, w = (c - a) / k;
     auto add = [&](const Eigen::Vector3d& p) {
-      Cluster& cl = cells[CellKey(p, spacing_mm)];
-      if (cl.area == 0.0) {
-        cl.order = next++;
-        cl.part = upper_U.triangle_part.empty() ? 0 : upper_U.triangle_part[t];
+      const auto [at, added] = cell_cluster.try_emplace(
+          CellKey(p, spacing_mm), static_cast<std::uint32_t>(clusters.size()));
+      if (added) {
+        clusters.emplace_back();
+        clusters.back().part = upper_U.triangle_part.empty() ? 0 : upper_U.triangle_part[t];
       }
+      Cluster& cl = clusters[at->second];
       cl.weighted += area * p;
       cl.normal += area * unit_n;
       cl.area += area;
@@ -75,16 +82,14 @@ SampleSet OcclusalSamples(const io::TriangleMesh& upper_U, const Eigen::Isometry
       }
     }
   }
-  std::vector<const Cluster*> ordered(cells.size(), nullptr);
-  for (const auto& [key, cl] : cells) ordered[cl.order] = &cl;
   SampleSet set;
   set.spacing_mm = spacing_mm;
-  for (const Cluster* cl : ordered) {
-    set.p_U.push_back(cl->weighted / cl->area);
-    set.area_mm2.push_back(cl->area);
-    set.part.push_back(cl->part);
-    const double nn = cl->normal.norm();
-    set.facing.push_back(nn > 0.0 ? cl->normal.dot(down_U) / nn : 0.0);
+  for (const Cluster& cl : clusters) {
+    set.p_U.push_back(cl.weighted / cl.area);
+    set.area_mm2.push_back(cl.area);
+    set.part.push_back(cl.part);
+    const double nn = cl.normal.norm();
+    set.facing.push_back(nn > 0.0 ? cl.normal.dot(down_U) / nn : 0.0);
   }
   return set;
 }

@@ -488,8 +488,8 @@ TEST(VoxelizeTest, RealJawsHaveClosedTeeth) {
   }
 }
 
-// FloorInt is std::floor on the values the grids give it: integers, their neighbours an ulp
-// away on either side, halves, zero of both signs and the ends of its range.
+// FloorInt and FloorInt64 are std::floor on the values the grids give them: integers, their
+// neighbours an ulp away on either side, halves, zero of both signs and the ends of the range.
 TEST(FloorInt, MatchesStdFloor) {
   std::vector<double> xs = {0.0,     -0.0,         0.5,           -0.5,         1e-300,
                             -1e-300, 2147483646.5, -2147483647.0, -2147483646.5};
@@ -503,6 +503,11 @@ TEST(FloorInt, MatchesStdFloor) {
   for (int i = 0; i < 10000; ++i) xs.push_back(u(rng));
   for (const double x : xs)
     EXPECT_EQ(static_cast<double>(detail::FloorInt(x)), std::floor(x)) << std::hexfloat << x;
+  // FloorInt64 (the samples' cell keys) on the same values and past the 32-bit range.
+  for (const double x : {4294967296.5, -4294967296.5, 9.0e18, -9.0e18, -9.2e18 + 0.5})
+    xs.push_back(x);
+  for (const double x : xs)
+    EXPECT_EQ(static_cast<double>(detail::FloorInt64(x)), std::floor(x)) << std::hexfloat << x;
 }
 
 // VoxelOf (FloorInt on its quotients) gives the voxel of the floor-and-nudge rule with libm's
