@@ -39,11 +39,26 @@ int main(int argc, char** argv) {
   }
   int reps = 5;
   std::string pose_file, only;
-  for (int i = 2; i + 1 < argc; i += 2) {
+  for (int i = 2; i < argc; i += 2) {
     const std::string flag = argv[i];
+    if (i + 1 >= argc || (flag != "--reps" && flag != "--pose" && flag != "--only")) {
+      std::fprintf(stderr,
+                   "render_measure: bad argument '%s' (usage: render_measure CONFIG "
+                   "[--reps N] [--pose pose.json] [--only NAME])\n",
+                   flag.c_str());
+      return 2;
+    }
     if (flag == "--reps") reps = std::max(1, std::atoi(argv[i + 1]));
     if (flag == "--pose") pose_file = argv[i + 1];
     if (flag == "--only") only = argv[i + 1];
+  }
+  const std::vector<std::string> names = {"lower_map", "upper_map", "frontal", "lateral"};
+  if (!only.empty() && std::find(names.begin(), names.end(), only) == names.end()) {
+    std::fprintf(stderr,
+                 "render_measure: --only %s: not a picture (lower_map, upper_map, frontal or "
+                 "lateral)\n",
+                 only.c_str());
+    return 2;
   }
   try {
     const CaseConfig config = LoadCaseConfig(argv[1]);
