@@ -62,11 +62,13 @@ HapticRow Replay(const HapticTrajectory& trajectory, double period_us, double ma
     ++row.ticks;
     if (done > stop) break;
   }
-  row.p50_us = NearestRankPercentile(latency_us, 0.5, 0.0);
-  row.p99_us = NearestRankPercentile(latency_us, 0.99, 0.0);
-  row.p999_us = NearestRankPercentile(latency_us, 0.999, 0.0);
-  row.max_us = NearestRankPercentile(latency_us, 1.0, 0.0);
-  row.cpu_p50_us = NearestRankPercentile(cpu_us, 0.5, 0.0);
+  std::sort(latency_us.begin(), latency_us.end());
+  std::sort(cpu_us.begin(), cpu_us.end());
+  row.p50_us = NearestRankOfSorted(latency_us, 0.5, 0.0);
+  row.p99_us = NearestRankOfSorted(latency_us, 0.99, 0.0);
+  row.p999_us = NearestRankOfSorted(latency_us, 0.999, 0.0);
+  row.max_us = NearestRankOfSorted(latency_us, 1.0, 0.0);
+  row.cpu_p50_us = NearestRankOfSorted(cpu_us, 0.5, 0.0);
   return row;
 }
 
