@@ -151,7 +151,7 @@ struct DrawOrder {
   std::vector<std::size_t> group_end;      ///< where each group ends in `triangles`
 };
 
-constexpr int kFrontGroups = 2;  ///< depth slices of the front faces (more cost more bounds)
+constexpr int kFrontGroups = 2;  ///< depth slices of the front faces (3, 4, 6 measured no faster)
 
 DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2>& v, int width,
                          int height) {
@@ -164,7 +164,7 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
     dmin = std::min(dmin, p.depth);
     dmax = std::max(dmax, p.depth);
   }
-  const double to_slice = dmax > dmin ? kFrontGroups / (dmax - dmin) : 0.0;
+  const double to_group = dmax > dmin ? kFrontGroups / (dmax - dmin) : 0.0;
   const std::size_t groups = (kFrontGroups + 1) * tiles;
   std::vector<std::size_t> key(mesh.num_triangles());
   std::vector<std::size_t> start(groups + 1, 0);
@@ -177,7 +177,7 @@ DrawOrder OrderTriangles(const io::TriangleMesh& mesh, const std::vector<Vertex2
         IsBackFace(a, v[static_cast<std::size_t>(tri[1])], v[static_cast<std::size_t>(tri[2])]);
     const int group =
         back ? kFrontGroups
-             : std::clamp(static_cast<int>((a.depth - dmin) * to_slice), 0, kFrontGroups - 1);
+             : std::clamp(static_cast<int>((a.depth - dmin) * to_group), 0, kFrontGroups - 1);
     key[t] = static_cast<std::size_t>(group) * tiles +
              static_cast<std::size_t>(ty) * static_cast<std::size_t>(tiles_x) +
              static_cast<std::size_t>(tx);

@@ -33,28 +33,30 @@ Eigen::Vector3i CellOf(const Eigen::Vector3d& p, double cell) {
                          static_cast<int>(std::floor(p.z() / cell)));
 }
 
-// The cells of size `cell` within `grow` cells (per axis) of a cell that the bounding box of one
-// of the field mesh's triangles touches: with grow * cell >= reach, a point whose cell is not
-// among them is farther than `reach` from the mesh. A bitmap over the mesh's box of cells
-// (grown by `grow`), the boxes marked and then dilated one axis at a time; a hash set of the
-// cells when that box is huge (a stray vertex far away).
+// Where a point may lie within `reach` of a mesh: the cells within `grow` cells (per axis) of a
+// cell that the bounding box of one of the mesh's triangles touches, with grow * cell >= reach
+// (a point whose cell is not among them is farther than `reach`). Cells of half the reach grown
+// by two, in a bitmap over the mesh's box of cells (grown by two; the boxes marked, then dilated
+// one axis at a time): a thinner shell of candidates than cells of the reach grown by one (on
+// a-bite's jaws a third fewer of the vertices that Exact searches the whole reach for in vain).
+// When that bitmap would be huge (a stray vertex far away), cells of the reach grown by one in a
+// hash set.
 class NearCells {
  public:
-  NearCells(const io::TriangleMesh& mesh, double cell, int grow) {
-    std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>> boxes(mesh.num_triangles());
-    lo_ = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
-    Eigen::Vector3i hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
-    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-      const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-      boxes[t] = {CellOf(a.cwiseMin(b).cwiseMin(c), cell), CellOf(a.cwiseMax(b).cwiseMax(c), cell)};
-      lo_ = lo_.cwiseMin(boxes[t].first);
-      hi = hi.cwiseMax(boxes[t].second);
-    }
+  NearCells(const io::TriangleMesh& mesh, double reach) {
+    std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>> boxes;
+    Eigen::Vector3i hi;
+    grow_ = 2;
+    cell_ = reach * (1.0 + 1e-9) / grow_;
+    Boxes(mesh, &boxes, &hi);
     if (boxes.empty()) return;
-    lo_ -= Eigen::Vector3i::Constant(grow);  // room for the dilation
-    dims_ = (hi - lo_ + Eigen::Vector3i::Constant(1 + grow)).cast<std::int64_t>();
+    lo_ -= Eigen::Vector3i::Constant(grow_);  // room for the dilation
+    dims_ = (hi - lo_ + Eigen::Vector3i::Constant(1 + grow_)).cast<std::int64_t>();
     if (dims_.prod() > kMaxBitmapCells) {
-      const Eigen::Vector3i g = Eigen::Vector3i::Constant(grow);
+      grow_ = 1;
+      cell_ = reach * (1.0 + 1e-9);
+      Boxes(mesh, &boxes, &hi);
+      const Eigen::Vector3i g = Eigen::Vector3i::Constant(grow_);
       for (const auto& [l, h] : boxes)
         ForCells(l - g, h + g, [&](const Eigen::Vector3i& c) { set_.insert(CellKey(c)); });
       return;
@@ -63,7 +65,28 @@ class NearCells {
     for (const auto& [l, h] : boxes)
       ForCells(l, h, [&](const Eigen::Vector3i& c) { bits_[At(c)] = 1; });
     for (int axis = 0; axis < 3; ++axis) {
-      for (int step = 0; step < grow; ++step) Dilate(axis);
+      for (int step = 0; step < grow_; ++step) Dilate(axis);
+    }
+  }
+
+  /// False: p is farther than the reach from the mesh.
+  bool Near(const Eigen::Vector3d& p) const { return Contains(CellOf(p, cell_)); }
+
+ private:
+  static constexpr std::int64_t kMaxBitmapCells = std::int64_t{1} << 26;
+
+  // Each triangle's box of cells (of cell_), and the box of them all (lo_, *hi).
+  void Boxes(const io::TriangleMesh& mesh,
+             std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>>* boxes, Eigen::Vector3i* hi) {
+    boxes->resize(mesh.num_triangles());
+    lo_ = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
+    *hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+      const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+      (*boxes)[t] = {CellOf(a.cwiseMin(b).cwiseMin(c), cell_),
+                     CellOf(a.cwiseMax(b).cwiseMax(c), cell_)};
+      lo_ = lo_.cwiseMin((*boxes)[t].first);
+      *hi = hi->cwiseMax((*boxes)[t].second);
     }
   }
 
@@ -74,9 +97,6 @@ class NearCells {
       return false;
     return bits_[At(c)] != 0;
   }
-
- private:
-  static constexpr std::int64_t kMaxBitmapCells = std::int64_t{1} << 26;
 
   template <typename Visit>
   static void ForCells(const Eigen::Vector3i& l, const Eigen::Vector3i& h, Visit&& visit) {
@@ -91,7 +111,7 @@ class NearCells {
     return static_cast<std::size_t>(i.x() + dims_.x() * (i.y() + dims_.y() * i.z()));
   }
   // Every cell also marked when a neighbour along `axis` is: each line of cells along the axis
-  // ORs in the lines before and after it (the box was grown by `grow`, so nothing marked
+  // ORs in the lines before and after it (the box was grown by grow_, so nothing marked
   // reaches its border).
   void Dilate(int axis) {
     const auto stride = static_cast<std::size_t>(axis == 0   ? 1
@@ -116,6 +136,8 @@ class NearCells {
     }
   }
 
+  double cell_ = 1.0;
+  int grow_ = 1;
   Eigen::Vector3i lo_ = Eigen::Vector3i::Zero();
   Eigen::Matrix<std::int64_t, 3, 1> dims_ = Eigen::Matrix<std::int64_t, 3, 1>::Zero();
   std::vector<std::uint8_t> bits_;
@@ -128,12 +150,7 @@ std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Is
                                    const collision::NarrowBandSdf& field,
                                    const io::TriangleMesh& field_mesh, double reach) {
   std::vector<float> out(mesh.num_vertices(), render::kFarValue);
-  // Cells of half the reach grown by two: a thinner shell of candidates around the mesh than
-  // cells of the reach grown by one, for the same guarantee (Exact searches the whole reach for
-  // a candidate farther than it: a third fewer of them on a-bite's jaws).
-  constexpr int kGrow = 2;
-  const double cell = reach * (1.0 + 1e-9) / kGrow;
-  const NearCells near_cells(field_mesh, cell, kGrow);
+  const NearCells near_cells(field_mesh, reach);
   const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
   const std::size_t chunk = (out.size() + threads - 1) / threads;
   std::vector<std::thread> pool;
@@ -142,7 +159,7 @@ std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Is
       collision::SignedDistanceSample s;
       for (std::size_t i = k * chunk; i < std::min(out.size(), (k + 1) * chunk); ++i) {
         const Eigen::Vector3d p = X_FM * mesh.vertices[i];
-        if (near_cells.Contains(CellOf(p, cell)) && field.Exact(p, reach, &s))
+        if (near_cells.Near(p) && field.Exact(p, reach, &s))
           out[i] = static_cast<float>(s.distance);
       }
     });
