@@ -3,30 +3,25 @@
 // thread; prints per picture the median thread CPU time and a checksum of its PNG (a change of the
 // rasterizer that keeps the checksums keeps the pictures byte for byte).
 #include <algorithm>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "base/timing.h"
 #include "config/case_config.h"
 #include "config/pose_file.h"
+#include "occlude/io/content_hash.h"
 #include "report/report_analysis.h"
 #include "report/report_images.h"
 #include "session/case_session.h"
 
 namespace {
 
-std::uint64_t Fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (const char c : bytes) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
+// The pictures, in the order they are measured.
+const char* const kPictures[] = {"lower_map", "upper_map", "frontal", "lateral"};
 
 }  // namespace
 
@@ -52,8 +47,8 @@ int main(int argc, char** argv) {
     if (flag == "--pose") pose_file = argv[i + 1];
     if (flag == "--only") only = argv[i + 1];
   }
-  const std::vector<std::string> names = {"lower_map", "upper_map", "frontal", "lateral"};
-  if (!only.empty() && std::find(names.begin(), names.end(), only) == names.end()) {
+  if (!only.empty() &&
+      std::find(std::begin(kPictures), std::end(kPictures), only) == std::end(kPictures)) {
     std::fprintf(stderr,
                  "render_measure: --only %s: not a picture (lower_map, upper_map, frontal or "
                  "lateral)\n",
@@ -70,28 +65,27 @@ int main(int argc, char** argv) {
     const render::MapScale scale{config.report.map_max_mm, config.contact_band_mm,
                                  config.report.map_penetration_from_mm};
     const int w = config.report.image_width_px;
-    const std::vector<std::pair<const char*, std::function<render::Image()>>> pictures = {
-        {"lower_map",
-         [&] { return RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image; }},
-        {"upper_map",
-         [&] { return RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image; }},
-        {"frontal", [&] { return RenderSideView(SideView::kFrontal, jaws, analysis, scale, w); }},
-        {"lateral",
-         [&] { return RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w); }}};
+    const std::function<render::Image()> render[] = {
+        [&] { return RenderContactMap(Arch::kLower, jaws, analysis, scale, w).image; },
+        [&] { return RenderContactMap(Arch::kUpper, jaws, analysis, scale, w).image; },
+        [&] { return RenderSideView(SideView::kFrontal, jaws, analysis, scale, w); },
+        [&] { return RenderSideView(SideView::kLateralRight, jaws, analysis, scale, w); }};
     double total = 0;
-    for (const auto& [name, render] : pictures) {
+    for (std::size_t k = 0; k < std::size(kPictures); ++k) {
+      const std::string name = kPictures[k];
       if (!only.empty() && only != name) continue;
       std::vector<double> cpu;
       std::string png;
       for (int r = 0; r < reps; ++r) {
         const double t0 = occlude::ThreadCpuSeconds();
-        png = EncodePng(render());
+        png = EncodePng(render[k]());
         cpu.push_back(occlude::ThreadCpuSeconds() - t0);
       }
       std::sort(cpu.begin(), cpu.end());
       total += cpu[cpu.size() / 2];
-      std::printf("%-10s %7.1f ms  png %8zu bytes  fnv %016llx\n", name, 1e3 * cpu[cpu.size() / 2],
-                  png.size(), static_cast<unsigned long long>(Fnv1a(png)));
+      std::printf("%-10s %7.1f ms  png %8zu bytes  hash %s\n", name.c_str(),
+                  1e3 * cpu[cpu.size() / 2], png.size(),
+                  occlude::io::HashHex(occlude::io::Hash64(png.data(), png.size())).c_str());
     }
     std::printf("%-10s %7.1f ms (sum of medians, thread CPU)\n", "all", 1e3 * total);
   } catch (const std::exception& e) {
