@@ -3,12 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <memory>
 #include <thread>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "base/timing.h"
 #include "base/user_error.h"
@@ -22,135 +20,13 @@ namespace {
 // Contact samples closer than this belong to one spot (samples are ~0.3 mm apart).
 constexpr double kSpotLinkMm = 0.6;
 
-std::uint64_t CellKey(const Eigen::Vector3i& c) {
-  auto u = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
-  return (u(c.x()) << 42) | (u(c.y()) << 21) | u(c.z());
-}
-
-Eigen::Vector3i CellOf(const Eigen::Vector3d& p, double cell) {
-  return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / cell)),
-                         static_cast<int>(std::floor(p.y() / cell)),
-                         static_cast<int>(std::floor(p.z() / cell)));
-}
-
-// Where a point may lie within `reach` of a mesh: the cells within `grow` cells (per axis) of a
-// cell that the bounding box of one of the mesh's triangles touches, with grow * cell >= reach
-// (a point whose cell is not among them is farther than `reach`). Cells of half the reach grown
-// by two, in a bitmap over the mesh's box of cells (grown by two; the boxes marked, then dilated
-// one axis at a time): a thinner shell of candidates than cells of the reach grown by one (on
-// a-bite's jaws a third fewer of the vertices that Exact searches the whole reach for in vain).
-// When that bitmap would be huge (a stray vertex far away), cells of the reach grown by one in a
-// hash set.
-class NearCells {
- public:
-  NearCells(const io::TriangleMesh& mesh, double reach) {
-    std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>> boxes;
-    Eigen::Vector3i hi;
-    grow_ = 2;
-    cell_ = reach * (1.0 + 1e-9) / grow_;
-    Boxes(mesh, &boxes, &hi);
-    if (boxes.empty()) return;
-    lo_ -= Eigen::Vector3i::Constant(grow_);  // room for the dilation
-    dims_ = (hi - lo_ + Eigen::Vector3i::Constant(1 + grow_)).cast<std::int64_t>();
-    if (dims_.prod() > kMaxBitmapCells) {
-      grow_ = 1;
-      cell_ = reach * (1.0 + 1e-9);
-      Boxes(mesh, &boxes, &hi);
-      const Eigen::Vector3i g = Eigen::Vector3i::Constant(grow_);
-      for (const auto& [l, h] : boxes)
-        ForCells(l - g, h + g, [&](const Eigen::Vector3i& c) { set_.insert(CellKey(c)); });
-      return;
-    }
-    bits_.assign(static_cast<std::size_t>(dims_.prod()), 0);
-    for (const auto& [l, h] : boxes)
-      ForCells(l, h, [&](const Eigen::Vector3i& c) { bits_[At(c)] = 1; });
-    for (int axis = 0; axis < 3; ++axis) {
-      for (int step = 0; step < grow_; ++step) Dilate(axis);
-    }
-  }
-
-  /// False: p is farther than the reach from the mesh.
-  bool Near(const Eigen::Vector3d& p) const { return Contains(CellOf(p, cell_)); }
-
- private:
-  static constexpr std::int64_t kMaxBitmapCells = std::int64_t{1} << 26;
-
-  // Each triangle's box of cells (of cell_), and the box of them all (lo_, *hi).
-  void Boxes(const io::TriangleMesh& mesh,
-             std::vector<std::pair<Eigen::Vector3i, Eigen::Vector3i>>* boxes, Eigen::Vector3i* hi) {
-    boxes->resize(mesh.num_triangles());
-    lo_ = Eigen::Vector3i::Constant(std::numeric_limits<int>::max());
-    *hi = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
-    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
-      const Eigen::Vector3d a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-      (*boxes)[t] = {CellOf(a.cwiseMin(b).cwiseMin(c), cell_),
-                     CellOf(a.cwiseMax(b).cwiseMax(c), cell_)};
-      lo_ = lo_.cwiseMin((*boxes)[t].first);
-      *hi = hi->cwiseMax((*boxes)[t].second);
-    }
-  }
-
-  bool Contains(const Eigen::Vector3i& c) const {
-    if (bits_.empty()) return set_.count(CellKey(c)) > 0;
-    const Eigen::Vector3i i = c - lo_;
-    if ((i.array() < 0).any() || (i.cast<std::int64_t>().array() >= dims_.array()).any())
-      return false;
-    return bits_[At(c)] != 0;
-  }
-
-  template <typename Visit>
-  static void ForCells(const Eigen::Vector3i& l, const Eigen::Vector3i& h, Visit&& visit) {
-    for (int x = l.x(); x <= h.x(); ++x) {
-      for (int y = l.y(); y <= h.y(); ++y) {
-        for (int z = l.z(); z <= h.z(); ++z) visit(Eigen::Vector3i(x, y, z));
-      }
-    }
-  }
-  std::size_t At(const Eigen::Vector3i& c) const {
-    const Eigen::Matrix<std::int64_t, 3, 1> i = (c - lo_).cast<std::int64_t>();
-    return static_cast<std::size_t>(i.x() + dims_.x() * (i.y() + dims_.y() * i.z()));
-  }
-  // Every cell also marked when a neighbour along `axis` is: each line of cells along the axis
-  // ORs in the lines before and after it (the box was grown by grow_, so nothing marked
-  // reaches its border).
-  void Dilate(int axis) {
-    const auto stride = static_cast<std::size_t>(axis == 0   ? 1
-                                                 : axis == 1 ? dims_.x()
-                                                             : dims_.x() * dims_.y());
-    const auto n = static_cast<std::size_t>(dims_[axis]);
-    const std::size_t outer = bits_.size() / (stride * n);
-    const std::vector<std::uint8_t> before = bits_;
-    for (std::size_t o = 0; o < outer; ++o) {
-      for (std::size_t a = 0; a < n; ++a) {
-        const std::size_t line = (o * n + a) * stride;
-        std::uint8_t* out = &bits_[line];
-        if (a > 0) {
-          const std::uint8_t* prev = &before[line - stride];
-          for (std::size_t k = 0; k < stride; ++k) out[k] |= prev[k];
-        }
-        if (a + 1 < n) {
-          const std::uint8_t* next = &before[line + stride];
-          for (std::size_t k = 0; k < stride; ++k) out[k] |= next[k];
-        }
-      }
-    }
-  }
-
-  double cell_ = 1.0;
-  int grow_ = 1;
-  Eigen::Vector3i lo_ = Eigen::Vector3i::Zero();
-  Eigen::Matrix<std::int64_t, 3, 1> dims_ = Eigen::Matrix<std::int64_t, 3, 1>::Zero();
-  std::vector<std::uint8_t> bits_;
-  std::unordered_set<std::uint64_t> set_;
-};
-
 // Signed distance of every vertex (moved into the field's frame by X_FM) to the field's mesh;
-// vertices farther than `reach` (culled by the near cells first) hold kFarValue.
+// vertices farther than the near cells' reach (culled by them first) hold kFarValue.
 std::vector<float> VertexDistances(const io::TriangleMesh& mesh, const Eigen::Isometry3d& X_FM,
                                    const collision::NarrowBandSdf& field,
-                                   const io::TriangleMesh& field_mesh, double reach) {
+                                   const NearCells& near_cells) {
   std::vector<float> out(mesh.num_vertices(), render::kFarValue);
-  const NearCells near_cells(field_mesh, reach);
+  const double reach = near_cells.reach_mm();
   const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
   const std::size_t chunk = (out.size() + threads - 1) / threads;
   std::vector<std::thread> pool;
@@ -320,7 +196,7 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   ReportAnalysis a;
   a.X_LU = X_LU;
   a.voxel_mm = config.VoxelSizeMm();
-  a.reach_mm = std::max(1.0, config.report.map_max_mm + 0.25);
+  a.reach_mm = MapReachMm(config);
   a.arch = session.arch();
   // Parameters about the pivot at the pose as given (U = L there), relative to it.
   a.pivot_L = X_LU * session.pivot_L();
@@ -345,9 +221,8 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   a.timings_s.emplace_back("oracle query", NowSeconds() - t0);
 
   t0 = NowSeconds();
-  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower(), *jaws.lower_L, a.reach_mm);
-  a.lower_vertex_mm =
-      VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper(), *jaws.upper_U, a.reach_mm);
+  a.upper_vertex_mm = VertexDistances(*jaws.upper_U, X_LU, maps.lower(), maps.lower_near);
+  a.lower_vertex_mm = VertexDistances(*jaws.lower_L, X_LU.inverse(), maps.upper(), maps.upper_near);
   Attribute(jaws, maps.lower(), &a);
   a.timings_s.emplace_back("map distances", NowSeconds() - t0);
 

@@ -289,6 +289,9 @@ const planner::OracleSchedule& CaseSession::Schedule() {
       if (cache_->Holds(*inputs[i].lower, *inputs[i].upper, inputs[i].options))
         reads.emplace_back([&, i] { made[i] = BuildStage(inputs[i]); });
     }
+    // The finest (largest) first: the longest read starts at once, the others share the other
+    // core (a-bite: 132 MB against 59 + 39 MB).
+    std::reverse(reads.begin(), reads.end());
     RunTasks(reads);
     for (std::size_t i = 0; i < n; ++i) {
       if (oracles_[i]) continue;
@@ -351,6 +354,11 @@ const MapFields& CaseSession::Maps() {
     maps_->shared_lower = WholeLowerField();
     if (maps_->shared_lower == nullptr) maps_->own_lower = MapField(jaws_.lower_L);
     maps_->own_upper = upper_map_.valid() ? upper_map_.get() : MapField(jaws_.upper_U);
+  }
+  const double reach = MapReachMm(config_);
+  if (maps_->lower_near.reach_mm() != reach) {
+    RunTasks({[&] { maps_->lower_near = NearCells(*jaws_.lower_L, reach); },
+              [&] { maps_->upper_near = NearCells(*jaws_.upper_U, reach); }});
   }
   return *maps_;
 }

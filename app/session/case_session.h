@@ -23,6 +23,7 @@
 #include "occlude/planner/request.h"
 #include "session/case_analysis.h"
 #include "session/jaw_pair.h"
+#include "session/near_cells.h"
 #include "session/oracle_cache.h"
 #include "session/session_region.h"
 
@@ -48,12 +49,15 @@ collision::MemoryEstimate EstimateSessionMemory(const CaseConfig& config, const 
 /// Exact distance fields of both meshes for the report's vertex maps. Exact distances do not
 /// depend on a field's voxel size, so the lower's is the finest oracle's field when that oracle
 /// models the whole lower jaw (the session owns it), else one of its own, as is the upper's.
+/// With each, the cells near its mesh at the maps' reach (MapReachMm), which cull the vertices
+/// searched.
 struct MapFields {
   const collision::NarrowBandSdf& lower() const { return shared_lower ? *shared_lower : own_lower; }
   const collision::NarrowBandSdf& upper() const { return own_upper; }
 
   const collision::NarrowBandSdf* shared_lower = nullptr;
   collision::NarrowBandSdf own_lower, own_upper;
+  NearCells lower_near, upper_near;  ///< of lower_L and upper_U, at lower_near.reach_mm()
 };
 
 class CaseSession {
@@ -94,6 +98,8 @@ class CaseSession {
   const collision::JawOracle& FinestOracleAt(const Eigen::Isometry3d& X_LU);
   /// The oracles built so far, in build order (for the report's settings).
   const std::vector<OracleModel>& Models() const { return models_; }
+  /// The map fields (built on first use) with their near cells at the config's MapReachMm
+  /// (built again when UpdateSettings changed it).
   const MapFields& Maps();
 
   /// True when `other` can reuse this session's models (same meshes, units, up axis, voxel

@@ -7,9 +7,13 @@
 
 namespace occlude::app {
 
+double MapReachMm(const CaseConfig& config) {
+  return std::max(1.0, config.report.map_max_mm + 0.25);
+}
+
 double SessionReadRadiusMm(const CaseConfig& config, const collision::OracleOptions& stage) {
   const double planner_reach = std::max({0.3, 4.0 * config.max_penetration_mm, 1.0});
-  const double report_reach = std::max(1.0, config.report.map_max_mm + 0.25);
+  const double report_reach = MapReachMm(config);
   return collision::OracleReadRadiusMm(
       stage, std::max({config.contact_band_mm, planner_reach, report_reach}));
 }

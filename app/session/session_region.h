@@ -25,11 +25,15 @@ struct OracleModel {
   bool lower_cut = false, upper_cut = false;  ///< modelled on the region's sub-mesh (else whole)
 };
 
+/// How far from the other jaw the report's vertex maps hold exact distances: max(1, map_max_mm +
+/// 0.25) (a vertex farther away holds the far value).
+double MapReachMm(const CaseConfig& config);
+
 /// The farthest the session's queries read the lower jaw around an upper point on an oracle
 /// built with `stage` (collision::OracleReadRadiusMm), for the widest exact-level reach any of
 /// them asks for: the contact band, the planner's penetration search (max(0.3, 4 x
 /// max_penetration_mm)) and its seat window (1 mm), and the report's map reach
-/// (max(1, map_max_mm + 0.25), report_analysis.cpp).
+/// (MapReachMm).
 double SessionReadRadiusMm(const CaseConfig& config, const collision::OracleOptions& stage);
 
 /// The region request of a search from X_LU_start (pivot_L at that pose) within the config's
