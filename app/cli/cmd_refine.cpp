@@ -23,6 +23,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -190,11 +191,11 @@ RefineOutcome Refine(CaseSession& session, const Eigen::Isometry3d& base) {
   return r;
 }
 
-// Writes the report of a refinement (the 3D view from `display`, else decimated here) and
-// refine.json into `out`, and prints what changed.
+// Writes the report of a refinement (the 3D view of the `display` meshes) and refine.json into
+// `out`, and prints what changed.
 void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isometry3d& base,
                      const std::string& base_source, const std::filesystem::path& out,
-                     const DisplayJaws* display = nullptr) {
+                     const DisplayJaws& display) {
   const CaseConfig& config = session.config();
   SearchSummary summary{"refine", base_source + " + [adjust]", &r.result, session.pivot_L(),
                         session.jaws().upper_U.get()};
@@ -205,7 +206,7 @@ void WriteRefinement(CaseSession& session, RefineOutcome& r, const Eigen::Isomet
                                     : TargetsReport{};
   const ReportFiles files = MakeReportFiles(
       session, r.analysis, "`occlude refine` from " + base_source, SearchJson(summary, false),
-      targets.html + SearchHtml(summary), ReportView{display, {}});
+      targets.html + SearchHtml(summary), ReportView{&display, {}});
   const json refine = {
       {"base", {{"source", base_source}, {"X_LU", json::parse(MatrixJson(base.matrix()))}}},
       {"adjust",
@@ -323,16 +324,32 @@ void ShowLive(RefineLivePage& live, const CaseSession& session, const RefineOutc
             << " s)\n";
 }
 
+// The 3D view's display meshes of the session's jaws, decimated (or read from the cache) on a
+// thread of their own while the caller settles a pose.
+std::future<DisplayJaws> DecimateForViewerLater(const CaseSession& session) {
+  return std::async(std::launch::async, [jaws = session.jaws(), cache = session.cache()] {
+    return DecimateJawsForViewer(jaws, cache.get());
+  });
+}
+
 // --watch: refines from `base` at launch and after every save of the config until
 // --max-refinements or Ctrl-C; the live page (`live`, may be null) shows each.
 void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
            const Eigen::Isometry3d& base, const std::string& source, RefineLivePage* live) {
   const InterruptScope interrupt(live != nullptr ? &live->server() : nullptr);
+  // The report's display meshes, kept while the session lives (the live page keeps its own).
+  std::future<DisplayJaws> decimating;
+  std::optional<DisplayJaws> display;
+  if (live == nullptr) decimating = DecimateForViewerLater(*session);
+  const auto display_meshes = [&]() -> const DisplayJaws& {
+    if (live != nullptr) return live->Display(*session);
+    if (decimating.valid()) display = decimating.get();
+    return *display;
+  };
   const auto refine = [&](const std::filesystem::path& folder, int save) {
     RefineOutcome r = Refine(*session, base);
     if (live != nullptr) ShowLive(*live, *session, r, save);
-    WriteRefinement(*session, r, base, source, folder,
-                    live != nullptr ? &live->Display(*session) : nullptr);
+    WriteRefinement(*session, r, base, source, folder, display_meshes());
   };
   const std::filesystem::path file = session->config().file;
   refine(OutputFolder(session->config(), args.out), 0);
@@ -354,6 +371,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
       } else {
         std::cerr << "occlude: meshes or accuracy changed: rebuilding the models\n";
         session = std::make_unique<CaseSession>(updated, args.memory_budget_mb);
+        if (live == nullptr) decimating = DecimateForViewerLater(*session);
       }
       refine(OutputFolder(updated, args.out), done - 1);
     } catch (const UserError& e) {
@@ -386,13 +404,10 @@ void RunRefine(const RefineArgs& args) {
     return;
   }
   // The 3D view's meshes too are decimated while the pose settles.
-  std::future<DisplayJaws> display =
-      std::async(std::launch::async, [jaws = session->jaws(), cache = session->cache()] {
-        return DecimateJawsForViewer(jaws, cache.get());
-      });
+  std::future<DisplayJaws> display = DecimateForViewerLater(*session);
   RefineOutcome r = Refine(*session, base);
   const DisplayJaws decimated = display.get();
-  WriteRefinement(*session, r, base, source, out, &decimated);
+  WriteRefinement(*session, r, base, source, out, decimated);
 }
 
 }  // namespace

@@ -36,6 +36,9 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   const Eigen::Isometry3d X_start = session.ConfigStartPose();
   planner::PlanRequest request = PlanRequestFromConfig(config, X_start, session.pivot_L());
   const planner::OracleSchedule& schedule = session.Schedule();
+  // The arch analysis and a map field while the search runs (not while the oracles are built:
+  // a cold run's peak memory).
+  session.Prefetch();
   planner::PlanResult result;
   {
     ProgressBar bar("search (" + std::string(planner::ToString(request.solver)) + ")");
