@@ -54,16 +54,19 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   SearchSummary summary{"propose", "the config's [start] pose", &result, session.pivot_L(),
                         session.jaws().upper_U.get()};
   summary.analysis = &session.Analysis();
-  // The 3D view's display meshes (the meshes alone) are decimated while the best pose is
-  // analysed.
+  // The 3D view's display meshes (the meshes alone) are decimated while the proposals are
+  // analysed (the best for the report, every one for the view).
   DisplayJaws display;
-  ReportAnalysis analysis;
-  RunTasks({[&] { analysis = AnalyzePose(session, best.X_LU); },
+  std::vector<Eigen::Isometry3d> poses;
+  for (const planner::Proposal& p : result.proposals) poses.push_back(p.X_LU);
+  std::vector<ReportAnalysis> analyses;
+  RunTasks({[&] { analyses = AnalyzePoses(session, poses); },
             [&] { display = DecimateJawsForViewer(session.jaws(), session.cache().get()); }});
+  ReportAnalysis& analysis = analyses.front();
   analysis.timings_s.emplace_back("search (wall)", result.wall_seconds);
   StepClock clock;
   clock.Start("rendered the maps and views");
-  const ReportView view{&display, ProposalsForViewer(session, display, result, analysis)};
+  const ReportView view{&display, ProposalsForViewer(display, result, analyses)};
   const ReportFiles files = MakeReportFiles(session, analysis, "proposal 1 of `occlude propose`",
                                             SearchJson(summary, false), SearchHtml(summary), view);
   clock.Finish();

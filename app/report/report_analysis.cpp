@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <thread>
 #include <unordered_map>
 
+#include "base/tasks.h"
 #include "base/timing.h"
 #include "base/user_error.h"
 #include "occlude/collision/signed_distance.h"
@@ -231,6 +233,21 @@ ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU) 
   a.timings_s.emplace_back("clinical relationships (arch analysis once per session)",
                            NowSeconds() - t0);
   return a;
+}
+
+std::vector<ReportAnalysis> AnalyzePoses(CaseSession& session,
+                                         const std::vector<Eigen::Isometry3d>& poses) {
+  // What AnalyzePose builds on first use, built here first: the tasks below then only read the
+  // session.
+  for (const Eigen::Isometry3d& X_LU : poses) session.FinestOracleAt(X_LU);
+  session.Maps();
+  session.Analysis();
+  std::vector<ReportAnalysis> out(poses.size());
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    tasks.emplace_back([&, i] { out[i] = AnalyzePose(session, poses[i]); });
+  RunTasks(tasks);
+  return out;
 }
 
 }  // namespace occlude::app

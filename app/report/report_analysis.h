@@ -64,6 +64,12 @@ struct ReportAnalysis {
 /// throws UserError when the voxel size does not fit the jaws).
 ReportAnalysis AnalyzePose(CaseSession& session, const Eigen::Isometry3d& X_LU);
 
+/// AnalyzePose at each of `poses` (in their order): the session's models for them first (the
+/// finest oracle valid at each, the map fields, the arch analysis), then the poses two at a time
+/// on threads of their own, which only read the session.
+std::vector<ReportAnalysis> AnalyzePoses(CaseSession& session,
+                                         const std::vector<Eigen::Isometry3d>& poses);
+
 /// Groups points closer than `link_mm` (single linkage); returns a cluster id per point.
 std::vector<int> ClusterPoints(const std::vector<Eigen::Vector3d>& points, double link_mm);
 

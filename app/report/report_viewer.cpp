@@ -2,7 +2,6 @@
 #include "report/report_viewer.h"
 
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -77,9 +76,14 @@ std::string WithRelationships(const std::string& numbers_json, const analysis::R
   return numbers.dump();
 }
 
-std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const DisplayJaws& display,
+std::vector<ViewerProposal> ProposalsForViewer(const DisplayJaws& display,
                                                const planner::PlanResult& result,
-                                               const ReportAnalysis& best) {
+                                               const std::vector<ReportAnalysis>& analyses) {
+  if (analyses.size() != result.proposals.size()) {
+    throw std::invalid_argument("ProposalsForViewer: " + std::to_string(analyses.size()) +
+                                " analyses for " + std::to_string(result.proposals.size()) +
+                                " proposals");
+  }
   std::vector<ViewerProposal> out;
   for (std::size_t k = 0; k < result.proposals.size(); ++k) {
     const planner::Proposal& p = result.proposals[k];
@@ -89,12 +93,8 @@ std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const Displ
         {"constrained penetration (mm)", p.evaluation.constrained_penetration_mm},
         {"seat cost", p.seat_cost},
         {"status", planner::ToString(p.status)}};
-    const std::string label = "proposal " + std::to_string(k + 1);
-    std::optional<ReportAnalysis> other;  // the first proposal's analysis is given
-    if (k > 0) other = AnalyzePose(session, p.X_LU);
-    const ReportAnalysis& analysis = other ? *other : best;
-    out.push_back(ViewerProposalOf(display, analysis, label,
-                                   WithRelationships(numbers.dump(), analysis.relationships)));
+    out.push_back(ViewerProposalOf(display, analyses[k], "proposal " + std::to_string(k + 1),
+                                   WithRelationships(numbers.dump(), analyses[k].relationships)));
   }
   return out;
 }

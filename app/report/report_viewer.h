@@ -53,10 +53,10 @@ std::string AnalysisNumbersJson(const ReportAnalysis& analysis);
 std::string WithRelationships(const std::string& numbers_json, const analysis::Relationships& r);
 
 /// The K proposals of a search for the view ("proposal 1".. in rank order), each with its
-/// contact, penetration, seat cost, status and clinical relationships; the first from `best` (the
-/// analysis of proposals[0]), the others analysed here on the session's finest oracle.
-std::vector<ViewerProposal> ProposalsForViewer(CaseSession& session, const DisplayJaws& display,
+/// contact, penetration, seat cost, status and clinical relationships; `analyses` holds the
+/// analysis of each proposal, in the same order (AnalyzePoses).
+std::vector<ViewerProposal> ProposalsForViewer(const DisplayJaws& display,
                                                const planner::PlanResult& result,
-                                               const ReportAnalysis& best);
+                                               const std::vector<ReportAnalysis>& analyses);
 
 }  // namespace occlude::app

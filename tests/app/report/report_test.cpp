@@ -148,6 +148,33 @@ TEST(ReportAnalysisTest, VertexDistancesMatchBruteForceWithinTheReach) {
   }
 }
 
+// The poses analysed together (two at a time) answer as each analysed alone, in their order.
+TEST(ReportAnalysisTest, AnalyzePosesMatchesAnalyzePoseAtEachPose) {
+  const Fixture& f = Shared();
+  const Eigen::Isometry3d turned(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()) *
+                                 Eigen::Translation3d(0.1, 0.15, 0.0));
+  const std::vector<Eigen::Isometry3d> poses = {turned, Eigen::Isometry3d::Identity(),
+                                                f.pushed.X_LU};
+  const std::vector<app::ReportAnalysis> together = app::AnalyzePoses(*f.session, poses);
+  ASSERT_EQ(together.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    SCOPED_TRACE(i);
+    const app::ReportAnalysis alone = app::AnalyzePose(*f.session, poses[i]);
+    const app::ReportAnalysis& a = together[i];
+    EXPECT_TRUE(a.X_LU.isApprox(poses[i], 0.0));
+    EXPECT_EQ(a.oracle.contact_area_mm2, alone.oracle.contact_area_mm2);
+    EXPECT_EQ(a.oracle.max_penetration_mm, alone.oracle.max_penetration_mm);
+    EXPECT_EQ(a.upper_vertex_mm, alone.upper_vertex_mm);
+    EXPECT_EQ(a.lower_vertex_mm, alone.lower_vertex_mm);
+    EXPECT_EQ(a.spots.size(), alone.spots.size());
+    EXPECT_EQ(a.teeth.size(), alone.teeth.size());
+    EXPECT_EQ(a.relationships.overjet.mm, alone.relationships.overjet.mm);
+    EXPECT_EQ(a.relationships.midline_deviation.mm, alone.relationships.midline_deviation.mm);
+  }
+  EXPECT_GT(together[1].oracle.contact_area_mm2, 0.5);  // the truth pose is among them
+  EXPECT_TRUE(app::AnalyzePoses(*f.session, {}).empty());
+}
+
 TEST(ReportImages, TruthContactsShowTheContactColourAndNoPenetration) {
   const Fixture& f = Shared();
   ASSERT_FALSE(f.jaws.truth_contacts_L.empty());
