@@ -1,6 +1,7 @@
-// Atomic whole-file writes (io/atomic_file.h): the file appears only on Commit, whole; a writer
-// dropped uncommitted leaves no file and no temporary one; Overwrite patches appended bytes and
-// refuses bytes not yet appended; a missing folder is one error naming the file.
+// Atomic whole-file writes (io/atomic_file.h): the file appears only on Commit, whole (also in
+// pieces larger than one write call); a writer dropped uncommitted leaves no file and no
+// temporary one; Overwrite patches appended bytes and refuses bytes not yet appended; a missing
+// folder is one error naming the file.
 #include "occlude/io/atomic_file.h"
 
 #include <gtest/gtest.h>
@@ -43,6 +44,30 @@ TEST(AtomicFileWriterTest, TheFileAppearsWholeOnCommitWithItsHeaderPatched) {
   }
   EXPECT_EQ(Read(file), "headpayload-PApayload-2");
   EXPECT_EQ(FilesIn(dir.path()), 1u);
+}
+
+// Pieces larger than one write call (1 MiB) land whole, byte for byte, appended and patched
+// across a call's boundary; WriteFileAtomically likewise.
+TEST(AtomicFileWriterTest, PiecesOfSeveralMegabytesLandByteForByte) {
+  const test::TempDir dir;
+  std::string big(3 * (std::size_t{1} << 20) + 12345, '\0');
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>((i * 131 + i / 7) & 0xff);
+  const std::filesystem::path file = dir / "big.bin";
+  {
+    AtomicFileWriter out(file);
+    out.Append("HEAD");
+    out.Append(big);
+    out.Append(big.substr(0, 1000));
+    const std::string patch(5000, 'p');
+    out.Overwrite((std::size_t{1} << 20) - 2000, patch);  // across the first call's end
+    out.Commit();
+  }
+  std::string want = "HEAD" + big + big.substr(0, 1000);
+  want.replace((std::size_t{1} << 20) - 2000, 5000, std::string(5000, 'p'));
+  EXPECT_EQ(Read(file), want);
+  WriteFileAtomically(dir / "whole.bin", big);
+  EXPECT_EQ(Read(dir / "whole.bin"), big);
+  EXPECT_EQ(FilesIn(dir.path()), 2u);
 }
 
 TEST(AtomicFileWriterTest, DroppedUncommittedItLeavesNothingAndTheOldFileStays) {
