@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "base/tasks.h"
 #include "report/relationships_table.h"
 
 namespace occlude::app {
@@ -26,9 +27,9 @@ io::DecimationResult DecimateForViewer(const io::TriangleMesh& mesh, OracleCache
 
 DisplayJaws DecimateJawsForViewer(const JawPair& jaws, OracleCache* cache,
                                   std::size_t max_triangles) {
-  DisplayJaws out;
-  out.lower = DecimateForViewer(*jaws.lower_L, cache, max_triangles);
-  out.upper = DecimateForViewer(*jaws.upper_U, cache, max_triangles);
+  DisplayJaws out;  // both jaws at once (a cold decimation is about 0.1 s a jaw, on one thread)
+  RunTasks({[&] { out.lower = DecimateForViewer(*jaws.lower_L, cache, max_triangles); },
+            [&] { out.upper = DecimateForViewer(*jaws.upper_U, cache, max_triangles); }});
   return out;
 }
 
