@@ -213,7 +213,7 @@ void OracleCache::PutBytes(std::string_view kind, std::uint64_t key, std::string
   fs::create_directories(folder_, ec);
   try {
     if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
-    io::WriteFileAtomically(file, ByteEntryFile(key, bytes));
+    io::WriteFileAtomically(file, ByteEntryFile(key, bytes), io::Durability::kAtomicOnly);
   } catch (const std::exception& e) {
     WarnNotWritten(e.what());
     return;
@@ -232,7 +232,7 @@ bool OracleCache::Save(const collision::JawOracle& oracle, const fs::path& file)
   fs::create_directories(folder_, ec);
   try {
     if (ec) throw io::MeshError(folder_.string() + ": " + ec.message());
-    collision::SaveOracleFile(oracle, file);
+    collision::SaveOracleFile(oracle, file, io::Durability::kAtomicOnly);
   } catch (const std::exception& e) {
     WarnNotWritten(e.what());
     return false;

@@ -6,11 +6,13 @@
 //
 // Folder: the command's --cache DIR, else $XDG_CACHE_HOME/occlude, else ~/.cache/occlude.
 // Entries are "oracle-<key as 16 hex digits>.occo", written to a temporary file and renamed
-// (a concurrent run never sees half an entry). A hit touches the entry's mtime; after a save
-// the oldest entries (by mtime) are unlinked until the folder's entries fit in `max_mb`; only
-// files of our name and magic are ever removed. A truncated, corrupt, foreign or mismatched
-// entry is rebuilt and replaced. A folder that cannot be made, read or written is one warning
-// line on the warning stream and the run goes on without it; the cache never fails a run.
+// (a concurrent run never sees half an entry), not flushed to disk (io::Durability::kAtomicOnly:
+// an entry a power loss left empty or partly written fails the checks below and is rebuilt). A hit
+// touches the entry's mtime; after a save the oldest entries (by mtime) are unlinked until the
+// folder's entries fit in `max_mb`; only files of our name and magic are ever removed. A truncated,
+// corrupt, foreign or mismatched entry is rebuilt and replaced. A folder that cannot be made, read
+// or written is one warning line on the warning stream and the run goes on without it; the cache
+// never fails a run.
 //
 // Beside the oracles, small products of one mesh alone (the arch analysis of a jaw) are kept as
 // byte entries "<kind>-<key as 16 hex digits>.occo" (magic, format, key, size and checksum in

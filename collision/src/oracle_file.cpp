@@ -275,10 +275,11 @@ std::vector<OracleFileSection> DescribeOracleBytes(std::string_view bytes) {
   return sections;
 }
 
-void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file) {
+void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file,
+                    io::Durability durability) {
   // In pieces, so that little besides the oracle is held; the header, known at the end, goes in
   // front.
-  io::AtomicFileWriter out(file);
+  io::AtomicFileWriter out(file, durability);
   out.Append(std::string(kHeaderBytes, '\0'));
   const Header h = PutSections(oracle, [&out](std::string_view section) { out.Append(section); });
   out.Overwrite(0, EncodeHeader(h));

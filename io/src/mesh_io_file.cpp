@@ -59,8 +59,9 @@ class TempFile {
     }
   }
 
-  void Commit() {
-    if (::fsync(fd_) != 0) FailWith("flushing to disk failed", errno);
+  // Closes the file (flushed to disk first when `flush`) and renames it over the target.
+  void Commit(bool flush) {
+    if (flush && ::fsync(fd_) != 0) FailWith("flushing to disk failed", errno);
     const int fd = fd_;
     fd_ = -1;
     if (::close(fd) != 0) FailWith("closing failed", errno);
@@ -151,7 +152,8 @@ struct AtomicFileWriter::Temp {
   detail::TempFile file;
 };
 
-AtomicFileWriter::AtomicFileWriter(const std::filesystem::path& file) {
+AtomicFileWriter::AtomicFileWriter(const std::filesystem::path& file, Durability durability)
+    : durability_(durability) {
   if (file.filename().empty()) detail::Fail(file, "cannot write: the path names no file");
   const std::filesystem::path folder = detail::FolderOf(file);
   std::error_code ec;
@@ -176,10 +178,11 @@ void AtomicFileWriter::Overwrite(std::size_t offset, std::string_view bytes) {
   temp_->file.WriteAt(offset, bytes);
 }
 
-void AtomicFileWriter::Commit() { temp_->file.Commit(); }
+void AtomicFileWriter::Commit() { temp_->file.Commit(durability_ == Durability::kDurable); }
 
-void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
-  AtomicFileWriter writer(file);
+void WriteFileAtomically(const std::filesystem::path& file, const std::string& bytes,
+                         Durability durability) {
+  AtomicFileWriter writer(file, durability);
   writer.Append(bytes);
   writer.Commit();
 }

@@ -47,7 +47,7 @@ TEST(AtomicFileWriterTest, TheFileAppearsWholeOnCommitWithItsHeaderPatched) {
 }
 
 // Pieces larger than one write call (1 MiB) land whole, byte for byte, appended and patched
-// across a call's boundary; WriteFileAtomically likewise.
+// across a call's boundary; WriteFileAtomically likewise, flushed to disk or not.
 TEST(AtomicFileWriterTest, PiecesOfSeveralMegabytesLandByteForByte) {
   const test::TempDir dir;
   std::string big(3 * (std::size_t{1} << 20) + 12345, '\0');
@@ -67,7 +67,18 @@ TEST(AtomicFileWriterTest, PiecesOfSeveralMegabytesLandByteForByte) {
   EXPECT_EQ(Read(file), want);
   WriteFileAtomically(dir / "whole.bin", big);
   EXPECT_EQ(Read(dir / "whole.bin"), big);
-  EXPECT_EQ(FilesIn(dir.path()), 2u);
+  // Unflushed (the caches' writes): the same bytes, renamed in place, no temporary file left.
+  WriteFileAtomically(dir / "cache.bin", big, Durability::kAtomicOnly);
+  EXPECT_EQ(Read(dir / "cache.bin"), big);
+  {
+    AtomicFileWriter out(dir / "cache-pieces.bin", Durability::kAtomicOnly);
+    out.Append(big.substr(0, 100));
+    out.Append(big.substr(100));
+    out.Overwrite(0, "HEAD");
+    out.Commit();
+  }
+  EXPECT_EQ(Read(dir / "cache-pieces.bin"), "HEAD" + big.substr(4));
+  EXPECT_EQ(FilesIn(dir.path()), 4u);
 }
 
 TEST(AtomicFileWriterTest, DroppedUncommittedItLeavesNothingAndTheOldFileStays) {

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "occlude/collision/oracle.h"
+#include "occlude/io/atomic_file.h"
 #include "occlude/io/triangle_mesh.h"
 
 namespace occlude::collision {
@@ -74,10 +75,12 @@ JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleM
                      std::shared_ptr<const io::TriangleMesh> upper_U, const OracleOptions& options);
 
 /// SaveOracle's bytes into `file`, atomically (a temporary file in the same folder, then renamed
-/// over it: a reader never sees a half-written file), written in pieces of about a megabyte (an
-/// array is written from its own memory): besides the oracle, next to nothing is held. Throws
-/// io::MeshError naming the file (folder missing or not writable, disk full).
-void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file);
+/// over it: a reader never sees a half-written file; flushed to disk first as `durability`
+/// says), written in pieces of about a megabyte (an array is written from its own memory):
+/// besides the oracle, next to nothing is held. Throws io::MeshError naming the file (folder
+/// missing or not writable, disk full).
+void SaveOracleFile(const JawOracle& oracle, const std::filesystem::path& file,
+                    io::Durability durability = io::Durability::kDurable);
 
 /// LoadOracle of the file's bytes, read in one pass. Throws OracleFileError naming the file
 /// (also when it cannot be read).
