@@ -181,6 +181,7 @@ std::unique_ptr<collision::JawOracle> CaseSession::BuildOracle(
   clock.Start("built the " + Mm(options.voxel_size_mm) + " mm contact oracle" + what);
   try {
     return cache_->Get(lower_L, upper_U, options, [&] {
+      *built_oracles_ = true;
       auto built = std::make_unique<collision::JawOracle>(lower_L, upper_U, options);
       ReturnFreedMemory();  // the build's transient grids, before the next build or the save
       return built;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <future>
 #include <memory>
 #include <optional>
@@ -98,6 +99,8 @@ class CaseSession {
   const collision::JawOracle& FinestOracleAt(const Eigen::Isometry3d& X_LU);
   /// The oracles built so far, in build order (for the report's settings).
   const std::vector<OracleModel>& Models() const { return models_; }
+  /// True once the session has built an oracle rather than read it from the cache.
+  bool BuiltOracles() const { return *built_oracles_; }
   /// The map fields (built on first use) with their near cells at the config's MapReachMm
   /// (built again when UpdateSettings changed it).
   const MapFields& Maps();
@@ -159,6 +162,9 @@ class CaseSession {
   // what every oracle built holds.
   std::unique_ptr<collision::JawOracle> whole_finest_;
   std::vector<OracleModel> models_;
+  /// Set by a build (reads, which may build a bad entry again, run on two threads); held by
+  /// pointer so that the session stays movable.
+  std::unique_ptr<std::atomic<bool>> built_oracles_ = std::make_unique<std::atomic<bool>>(false);
   /// The cache of oracles and arch analyses (config_'s cache settings); shared with the
   /// analysis's thread of Prefetch.
   std::shared_ptr<OracleCache> cache_;

@@ -56,7 +56,8 @@ TEST(CaseSessionTest, CoarseOraclesAreReleasedAndBuiltAgainAlike) {
 }
 
 // A schedule read from a warm cache (the stages it holds read at once, the one missing built)
-// is the cold schedule: every stage answers alike, and the models are listed in stage order.
+// is the cold schedule: every stage answers alike, and the models are listed in stage order;
+// BuiltOracles tells a session that built one from one that read them all.
 TEST(CaseSessionTest, ScheduleReadFromTheCacheAnswersAsBuilt) {
   const test::TempDir dir;
   CaseConfig config =
@@ -66,8 +67,10 @@ TEST(CaseSessionTest, ScheduleReadFromTheCacheAnswersAsBuilt) {
   std::vector<double> voxels;
   {
     CaseSession cold(config);
+    EXPECT_FALSE(cold.BuiltOracles());
     for (const planner::OracleStage& stage : cold.Schedule())
       digests.push_back(AnswersDigest(*stage.oracle));
+    EXPECT_TRUE(cold.BuiltOracles());
     for (const OracleModel& m : cold.Models()) voxels.push_back(m.voxel_mm);
   }
   ASSERT_EQ(digests.size(), 3u);
@@ -89,6 +92,7 @@ TEST(CaseSessionTest, ScheduleReadFromTheCacheAnswersAsBuilt) {
     std::vector<double> warm_voxels;
     for (const OracleModel& m : warm.Models()) warm_voxels.push_back(m.voxel_mm);
     EXPECT_EQ(warm_voxels, voxels) << drop_one;
+    EXPECT_EQ(warm.BuiltOracles(), drop_one);  // read alone, or one stage built
   }
 }
 
