@@ -256,9 +256,10 @@ DistanceBound DistanceBound::Build(const VoxelGrid& grid, int max_voxels,
   // Every level's occupied cells first: then the keys (the largest input) can go before the
   // passes, the build's largest part.
   const auto cap = static_cast<std::uint8_t>((2 * max_voxels + 1) * (2 * max_voxels + 1));
-  std::vector<BrickMap> occupied;
-  occupied.reserve(levels.size());
-  for (const int level : levels) occupied.push_back(OccupiedCells(grid, level, cap));
+  std::vector<BrickMap> occupied(levels.size());
+  detail::ParallelFor(levels.size(), workers, [&](std::size_t l, int) {
+    occupied[l] = OccupiedCells(grid, levels[l], cap);
+  });
   if (release != nullptr) *release = VoxelGrid();
   std::vector<int> t;  // per-axis term for |d| = 0..max_voxels
   for (int d = 0; d <= max_voxels; ++d) t.push_back(d == 0 ? 0 : (2 * d - 1) * (2 * d - 1));
