@@ -343,7 +343,8 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
   if (live == nullptr) decimating = DecimateForViewerLater(*session);
   const auto display_meshes = [&]() -> const DisplayJaws& {
     if (live != nullptr) return live->Display(*session);
-    if (decimating.valid()) display = decimating.get();
+    if (decimating.valid()) display = decimating.get();  // may throw: none kept, made again below
+    if (!display) display = DecimateJawsForViewer(session->jaws(), session->cache().get());
     return *display;
   };
   const auto refine = [&](const std::filesystem::path& folder, int save) {
@@ -371,6 +372,7 @@ void Watch(const RefineArgs& args, std::unique_ptr<CaseSession> session,
       } else {
         std::cerr << "occlude: meshes or accuracy changed: rebuilding the models\n";
         session = std::make_unique<CaseSession>(updated, args.memory_budget_mb);
+        display.reset();
         if (live == nullptr) decimating = DecimateForViewerLater(*session);
       }
       refine(OutputFolder(updated, args.out), done - 1);

@@ -1,10 +1,14 @@
 // `occlude refine` through the real binary: it applies [adjust] with a locked degree of
-// freedom and says what changed; --watch refines again on every save of the config.
+// freedom and says what changed; --watch refines again on every save of the config, and shows
+// new meshes after a save that changes them.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "case_run.h"
 #include "config/pose_file.h"
@@ -63,6 +67,59 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
   EXPECT_NE(out.find("moved t (0.100,"), std::string::npos) << out;
   EXPECT_NE(out.find("moved t (0.250,"), std::string::npos)
       << out;  // from the same base, not cumulative
+}
+
+// The 3D view's triangle counts in report.html ("triangles": lower's, then upper's).
+std::vector<long> ViewTriangles(const std::filesystem::path& report) {
+  std::ifstream in(report);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string html = text.str();
+  std::vector<long> counts;
+  const std::string key = "\"triangles\":";
+  for (std::size_t at = html.find(key); at != std::string::npos; at = html.find(key, at + 1))
+    counts.push_back(std::stol(html.substr(at + key.size(), 12)));
+  return counts;
+}
+
+// A save that changes the meshes makes a new session, and the next report's 3D view shows the
+// new meshes (the watch keeps display meshes only while its session lives).
+TEST(RefineCommandTest, WatchShowsTheNewMeshesAfterASaveChangesThem) {
+  test::TempDir tmp;
+  const std::string config = Config(tmp / "out", "[0.1, 0.0, 0.0]");
+  Write(tmp / "case.toml", config);
+  const std::string log = (tmp / "watch.log").string();
+  std::thread watcher([&] {
+    const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " +
+                            (tmp / "case.toml").string() +
+                            " --from-config --watch --max-refinements 2 > " + log + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+  });
+  auto read_log = [&] {
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  for (int i = 0; i < 600 && read_log().find("watching") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ASSERT_NE(read_log().find("watching"), std::string::npos) << read_log();
+  const std::vector<long> before = ViewTriangles(tmp / "out" / "report.html");
+  std::string finer = config;
+  finer.replace(finer.find("triangles = 5000"), 16, "triangles = 6000");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  Write(tmp / "case.toml", finer);
+  watcher.join();
+  EXPECT_NE(read_log().find("rebuilding the models"), std::string::npos) << read_log();
+  const json metrics = ReadJson(tmp / "out" / "metrics.json");
+  const std::vector<long> after = ViewTriangles(tmp / "out" / "report.html");
+  ASSERT_EQ(before.size(), 2u);
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_EQ(after[0], metrics["meshes"]["lower_triangles"].get<long>());
+  EXPECT_EQ(after[1], metrics["meshes"]["upper_triangles"].get<long>());
+  EXPECT_GT(after[0], before[0]);
+  EXPECT_GT(after[1], before[1]);
 }
 
 // The example: from the synthetic bite, [adjust] moves 0.3 mm along x. By default
