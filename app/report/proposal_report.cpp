@@ -37,8 +37,8 @@ Eigen::Isometry3d ProposeAndReport(const CaseConfig& config, const std::string& 
   planner::PlanRequest request = PlanRequestFromConfig(config, X_start, session.pivot_L());
   const planner::OracleSchedule& schedule = session.Schedule();
   // The arch analysis and a map field while the search runs, when the oracles were read from
-  // the cache. After builds the search holds every oracle at the run's peak memory (a-bite:
-  // 375 MB with the map field, against 345-360 MB): they wait for the coarse ones to be freed.
+  // the cache. After builds the search holds every oracle at the run's peak memory (a-bite: the
+  // map field beside them took one cold run to 417 MB): they wait for the coarse ones' release.
   if (!session.BuiltOracles()) session.Prefetch();
   planner::PlanResult result;
   {
