@@ -201,7 +201,10 @@ collision::RegionOfInterest CaseSession::SelectRegion(double band_mm, double* se
   // jaws' distance bounds again; either way the same sub-meshes, so the same oracle keys.
   return MadeOrCached(
       cache_.get(), kRegionEntryKind,
-      [&] { return RegionEntryKey(*jaws_.lower_L, *jaws_.upper_U, RegionRequest(band_mm)); },
+      [&] {
+        return RegionEntryKey(cache_->MeshHash(jaws_.lower_L), cache_->MeshHash(jaws_.upper_U),
+                              RegionRequest(band_mm));
+      },
       [&] {
         if (!region_) {
           region_ = std::make_unique<collision::RegionSelector>(jaws_.lower_L, jaws_.upper_U,
@@ -287,7 +290,7 @@ const planner::OracleSchedule& CaseSession::Schedule() {
     for (std::size_t i = 0; i < n; ++i) {
       if (oracles_[i]) continue;
       inputs[i] = PrepareStage(i);
-      if (cache_->Holds(*inputs[i].lower, *inputs[i].upper, inputs[i].options))
+      if (cache_->Holds(inputs[i].lower, inputs[i].upper, inputs[i].options))
         reads.emplace_back([&, i] { made[i] = BuildStage(inputs[i]); });
     }
     // The finest (largest) first: the longest read starts at once, the others share the other

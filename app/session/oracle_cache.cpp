@@ -149,14 +149,15 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
     last_ = OracleCacheOutcome::kOff;
     return build();
   }
-  const fs::path file =
-      folder_ / OracleCacheEntryName(collision::OracleCacheKey(*lower_L, *upper_U, options));
+  const std::uint64_t key =
+      collision::OracleCacheKey(MeshHash(lower_L), MeshHash(upper_U), options);
+  const fs::path file = folder_ / OracleCacheEntryName(key);
   std::error_code ec;
   last_ = OracleCacheOutcome::kMiss;
   if (fs::exists(file, ec)) {
     try {
       auto oracle = std::make_unique<collision::JawOracle>(
-          collision::LoadOracleFile(file, lower_L, upper_U, options));
+          collision::LoadOracleFile(file, lower_L, upper_U, options, key));
       fs::last_write_time(file, fs::file_time_type::clock::now(), ec);  // the LRU touch
       last_ = OracleCacheOutcome::kHit;
       return oracle;
@@ -173,7 +174,7 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
   built.reset();
   try {
     return std::make_unique<collision::JawOracle>(
-        collision::LoadOracleFile(file, lower_L, upper_U, options));
+        collision::LoadOracleFile(file, lower_L, upper_U, options, key));
   } catch (const collision::OracleFileError& e) {
     // Only if another run removed or replaced the entry meanwhile: build it again, uncached.
     Say(std::string("occlude: cache entry not read back (") + e.what() + "); building it again");
@@ -181,12 +182,36 @@ std::unique_ptr<collision::JawOracle> OracleCache::Get(
   }
 }
 
-bool OracleCache::Holds(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
-                        const collision::OracleOptions& options) const {
+bool OracleCache::Holds(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+                        const std::shared_ptr<const io::TriangleMesh>& upper_U,
+                        const collision::OracleOptions& options) {
   if (folder_.empty()) return false;
   std::error_code ec;
-  return fs::exists(
-      folder_ / OracleCacheEntryName(collision::OracleCacheKey(lower_L, upper_U, options)), ec);
+  return fs::exists(folder_ / OracleCacheEntryName(collision::OracleCacheKey(
+                                  MeshHash(lower_L), MeshHash(upper_U), options)),
+                    ec);
+}
+
+std::uint64_t OracleCache::MeshHash(const std::shared_ptr<const io::TriangleMesh>& mesh) {
+  // The same object: the same address and owner, still alive (a dead one's address may hold
+  // another mesh by now).
+  const auto same = [&](const HashedMesh& h) {
+    return h.mesh == mesh.get() && !h.owner.owner_before(mesh) && !mesh.owner_before(h.owner) &&
+           !h.owner.expired();
+  };
+  {
+    const std::lock_guard<std::mutex> lock(hash_mutex_);
+    for (const HashedMesh& h : hashed_) {
+      if (same(h)) return h.hash;
+    }
+  }
+  const std::uint64_t hash = io::MeshContentHash(*mesh);  // outside the lock: meshes hash at once
+  const std::lock_guard<std::mutex> lock(hash_mutex_);
+  hashed_.erase(std::remove_if(hashed_.begin(), hashed_.end(),
+                               [](const HashedMesh& h) { return h.owner.expired(); }),
+                hashed_.end());
+  hashed_.push_back({mesh, mesh.get(), hash});
+  return hash;
 }
 
 std::optional<std::string> OracleCache::GetBytes(std::string_view kind, std::uint64_t key) {

@@ -30,6 +30,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "occlude/collision/oracle.h"
 #include "occlude/io/triangle_mesh.h"
@@ -70,8 +71,13 @@ class OracleCache {
       const std::function<std::unique_ptr<collision::JawOracle>()>& build);
   /// Whether the folder has an entry under the key of these meshes and options (not checked:
   /// Get checks it); false when the cache is off.
-  bool Holds(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
-             const collision::OracleOptions& options) const;
+  bool Holds(const std::shared_ptr<const io::TriangleMesh>& lower_L,
+             const std::shared_ptr<const io::TriangleMesh>& upper_U,
+             const collision::OracleOptions& options);
+  /// io::MeshContentHash of a mesh shared as const (its owners never change it: a session's jaws
+  /// and their regions' sub-meshes), computed once per mesh object while it lives: every key of
+  /// a run (each stage's region, entry and load) reads it. Thread-safe.
+  std::uint64_t MeshHash(const std::shared_ptr<const io::TriangleMesh>& mesh);
 
   /// The bytes last saved under `kind` (lower-case letters, e.g. "analysis") and `key`, when
   /// the entry passes every check; nullopt when the cache is off or the entry is missing or bad
@@ -94,6 +100,13 @@ class OracleCache {
   std::mutex warn_mutex_;  ///< lines come from the threads of GetBytes and PutBytes too
   bool warned_write_ = false;
   std::atomic<OracleCacheOutcome> last_{OracleCacheOutcome::kOff};
+  struct HashedMesh {
+    std::weak_ptr<const io::TriangleMesh> owner;
+    const io::TriangleMesh* mesh = nullptr;
+    std::uint64_t hash = 0;
+  };
+  std::mutex hash_mutex_;
+  std::vector<HashedMesh> hashed_;  ///< MeshHash's, of the meshes still alive
   /// Writes the entry (then evicts to the limit); false, with a warning, when it cannot.
   bool Save(const collision::JawOracle& oracle, const std::filesystem::path& file);
   /// One line on the warning stream; with `once`, only the first time.

@@ -69,12 +69,17 @@ class Reader {
 
 std::uint64_t RegionEntryKey(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
                              const collision::RegionOfInterestRequest& request) {
+  return RegionEntryKey(io::MeshContentHash(lower_L), io::MeshContentHash(upper_U), request);
+}
+
+std::uint64_t RegionEntryKey(std::uint64_t lower_hash, std::uint64_t upper_hash,
+                             const collision::RegionOfInterestRequest& request) {
   io::Hasher64 h;
   h.AddString("occlude region of interest");
   h.AddValue(kEncodingVersion);
   h.AddString(collision::RegionSelectionCodeVersion());
-  h.AddValue(io::MeshContentHash(lower_L));
-  h.AddValue(io::MeshContentHash(upper_U));
+  h.AddValue(lower_hash);
+  h.AddValue(upper_hash);
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) h.AddValue(request.X_LU_start.matrix()(r, c));
   }

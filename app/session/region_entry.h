@@ -22,6 +22,9 @@ inline constexpr char kRegionEntryKind[] = "region";
 /// The key of ComputeRegionOfInterest(lower_L, upper_U, request).
 std::uint64_t RegionEntryKey(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
                              const collision::RegionOfInterestRequest& request);
+/// The same from the meshes' io::MeshContentHash values (OracleCache::MeshHash).
+std::uint64_t RegionEntryKey(std::uint64_t lower_hash, std::uint64_t upper_hash,
+                             const collision::RegionOfInterestRequest& request);
 
 /// The selection as bytes: its stats (but the seconds) and each jaw's kept triangles ("all" for
 /// a jaw kept whole).

@@ -160,11 +160,16 @@ const char* ToString(OracleFileProblem problem) {
 
 std::uint64_t OracleCacheKey(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
                              const OracleOptions& options) {
+  return OracleCacheKey(io::MeshContentHash(lower_L), io::MeshContentHash(upper_U), options);
+}
+
+std::uint64_t OracleCacheKey(std::uint64_t lower_hash, std::uint64_t upper_hash,
+                             const OracleOptions& options) {
   io::Hasher64 h;
   h.AddString("occlude saved oracle");
   h.AddValue(kOracleFileVersion);
-  h.AddValue(io::MeshContentHash(lower_L));
-  h.AddValue(io::MeshContentHash(upper_U));
+  h.AddValue(lower_hash);
+  h.AddValue(upper_hash);
   for (const double v : {options.voxel_size_mm, options.sample_spacing_mm, options.field_bound_mm,
                          options.field_bound_depth_mm}) {
     h.AddValue(v);
@@ -235,15 +240,15 @@ std::string SaveOracle(const JawOracle& oracle) {
 
 namespace {
 
-// LoadOracle, telling `release` (optional) of the bytes it is done with: the payload in chunks as
-// it is checksummed, then every array once copied out.
+// LoadOracle of the meshes and options whose OracleCacheKey is `key`, telling `release`
+// (optional) of the bytes it is done with: the payload in chunks as it is checksummed, then
+// every array once copied out.
 JawOracle LoadReleasing(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
                         std::shared_ptr<const io::TriangleMesh> upper_U,
-                        const OracleOptions& options, const detail::ReleaseBytes* release) {
-  CheckMesh(lower_L, "lower");
-  CheckMesh(upper_U, "upper");
+                        const OracleOptions& options, std::uint64_t key,
+                        const detail::ReleaseBytes* release) {
   const Header h = DecodeHeader(bytes);
-  if (h.key != OracleCacheKey(*lower_L, *upper_U, options)) {
+  if (h.key != key) {
     Fail(OracleFileProblem::kMismatch,
          "saved for other meshes or options (key " + io::HashHex(h.key) + ")");
   }
@@ -265,7 +270,10 @@ JawOracle LoadReleasing(std::string_view bytes, std::shared_ptr<const io::Triang
 JawOracle LoadOracle(std::string_view bytes, std::shared_ptr<const io::TriangleMesh> lower_L,
                      std::shared_ptr<const io::TriangleMesh> upper_U,
                      const OracleOptions& options) {
-  return LoadReleasing(bytes, std::move(lower_L), std::move(upper_U), options, nullptr);
+  CheckMesh(lower_L, "lower");
+  CheckMesh(upper_U, "upper");
+  const std::uint64_t key = OracleCacheKey(*lower_L, *upper_U, options);
+  return LoadReleasing(bytes, std::move(lower_L), std::move(upper_U), options, key, nullptr);
 }
 
 std::vector<OracleFileSection> DescribeOracleBytes(std::string_view bytes) {
@@ -348,12 +356,25 @@ JawOracle LoadOracleFile(const std::filesystem::path& file,
                          std::shared_ptr<const io::TriangleMesh> lower_L,
                          std::shared_ptr<const io::TriangleMesh> upper_U,
                          const OracleOptions& options) {
+  CheckMesh(lower_L, "lower");
+  CheckMesh(upper_U, "upper");
+  const std::uint64_t key = OracleCacheKey(*lower_L, *upper_U, options);
+  return LoadOracleFile(file, std::move(lower_L), std::move(upper_U), options, key);
+}
+
+JawOracle LoadOracleFile(const std::filesystem::path& file,
+                         std::shared_ptr<const io::TriangleMesh> lower_L,
+                         std::shared_ptr<const io::TriangleMesh> upper_U,
+                         const OracleOptions& options, std::uint64_t key) {
+  CheckMesh(lower_L, "lower");
+  CheckMesh(upper_U, "upper");
   const MappedFile mapped(file);
   const detail::ReleaseBytes release = [&mapped](const char* data, std::size_t size) {
     mapped.Release(data, size);
   };
   try {
-    return LoadReleasing(mapped.bytes(), std::move(lower_L), std::move(upper_U), options, &release);
+    return LoadReleasing(mapped.bytes(), std::move(lower_L), std::move(upper_U), options, key,
+                         &release);
   } catch (const OracleFileError& e) {
     Fail(e.problem(), file.string() + ": " + e.what());
   }

@@ -127,6 +127,18 @@ TEST_F(OracleFileTest, FileRoundTripLeavesNoTemporaryFileAndAMissingFileIsUnread
   }
   const JawOracle loaded = LoadOracleFile(dir / "a.oracle", lower_, upper_, options_);
   EXPECT_EQ(AnswersDigest(loaded), AnswersDigest(*built_));
+  // With the key given (from the meshes' hashes): the same oracle; another key is a mismatch.
+  const std::uint64_t key =
+      OracleCacheKey(io::MeshContentHash(*lower_), io::MeshContentHash(*upper_), options_);
+  EXPECT_EQ(key, OracleCacheKey(*lower_, *upper_, options_));
+  EXPECT_EQ(AnswersDigest(LoadOracleFile(dir / "a.oracle", lower_, upper_, options_, key)),
+            AnswersDigest(*built_));
+  try {
+    LoadOracleFile(dir / "a.oracle", lower_, upper_, options_, key ^ 1);
+    FAIL() << "loaded under another key";
+  } catch (const OracleFileError& e) {
+    EXPECT_EQ(e.problem(), OracleFileProblem::kMismatch);
+  }
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path()))
     ++files;

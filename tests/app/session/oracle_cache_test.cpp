@@ -131,18 +131,46 @@ TEST_F(OracleCacheTest, HoldsSaysWhetherTheEntryIsThere) {
   TempDir dir;
   OracleCacheSettings settings;
   settings.folder = dir.path();
-  const OracleCache cache(settings, &warnings_);
-  EXPECT_FALSE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+  OracleCache cache(settings, &warnings_);
+  EXPECT_FALSE(cache.Holds(jaws_->lower_L, jaws_->upper_U, options_));
   OracleCacheOutcome outcome;
   Get(dir.path(), &outcome);
-  EXPECT_TRUE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+  EXPECT_TRUE(cache.Holds(jaws_->lower_L, jaws_->upper_U, options_));
   collision::OracleOptions other = options_;
   other.sample_spacing_mm *= 1.5;
-  EXPECT_FALSE(cache.Holds(*jaws_->lower_L, *jaws_->upper_U, other));
+  EXPECT_FALSE(cache.Holds(jaws_->lower_L, jaws_->upper_U, other));
   OracleCacheSettings off;
   off.enabled = false;
   off.folder = dir.path();
-  EXPECT_FALSE(OracleCache(off, &warnings_).Holds(*jaws_->lower_L, *jaws_->upper_U, options_));
+  EXPECT_FALSE(OracleCache(off, &warnings_).Holds(jaws_->lower_L, jaws_->upper_U, options_));
+}
+
+// MeshHash is io::MeshContentHash, remembered per living mesh object: a copy with one vertex
+// moved, and a new mesh made after the first is gone (perhaps at its address), hash anew; the
+// keys from hashes equal those from meshes.
+TEST_F(OracleCacheTest, MeshHashIsTheContentHashOfEachLivingMesh) {
+  OracleCacheSettings off;
+  off.enabled = false;
+  OracleCache cache(off, &warnings_);
+  const std::uint64_t lower = cache.MeshHash(jaws_->lower_L);
+  EXPECT_EQ(lower, io::MeshContentHash(*jaws_->lower_L));
+  EXPECT_EQ(cache.MeshHash(jaws_->lower_L), lower);
+  EXPECT_EQ(cache.MeshHash(jaws_->upper_U), io::MeshContentHash(*jaws_->upper_U));
+  auto moved = std::make_shared<io::TriangleMesh>(*jaws_->lower_L);
+  moved->vertices[3].y() += 1e-6;
+  std::shared_ptr<const io::TriangleMesh> copy = moved;
+  EXPECT_EQ(cache.MeshHash(copy), io::MeshContentHash(*moved));
+  EXPECT_NE(cache.MeshHash(copy), lower);
+  for (int i = 0; i < 4; ++i) {  // new meshes, one after the other, where the last one died
+    copy.reset();
+    moved.reset();
+    auto next = std::make_shared<io::TriangleMesh>(*jaws_->upper_U);
+    next->vertices[static_cast<std::size_t>(i)].x() += 0.5;
+    copy = next;
+    EXPECT_EQ(cache.MeshHash(copy), io::MeshContentHash(*next)) << i;
+  }
+  EXPECT_EQ(collision::OracleCacheKey(lower, cache.MeshHash(jaws_->upper_U), options_),
+            collision::OracleCacheKey(*jaws_->lower_L, *jaws_->upper_U, options_));
 }
 
 TEST_F(OracleCacheTest, AChangedMeshByteOrSettingMisses) {

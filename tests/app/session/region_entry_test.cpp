@@ -108,6 +108,8 @@ TEST(RegionEntryTest, KeyChangesWithAMeshByteAndEveryRequestField) {
   const RegionOfInterestRequest base = RegionTestRequest(1.0);
   const std::uint64_t key = RegionEntryKey(*p.lower_L, *p.upper_U, base);
   EXPECT_EQ(RegionEntryKey(*p.lower_L, *p.upper_U, base), key);
+  EXPECT_EQ(RegionEntryKey(io::MeshContentHash(*p.lower_L), io::MeshContentHash(*p.upper_U), base),
+            key);  // from the meshes' hashes
   io::TriangleMesh moved = *p.upper_U;
   moved.vertices[7].x() = std::nextafter(moved.vertices[7].x(), 1e9);
   EXPECT_NE(RegionEntryKey(*p.lower_L, moved, base), key);

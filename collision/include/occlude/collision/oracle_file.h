@@ -64,6 +64,10 @@ class OracleFileError : public std::runtime_error {
 /// and each of its fields). Bit-exact: any changed bit of any of them changes the key.
 std::uint64_t OracleCacheKey(const io::TriangleMesh& lower_L, const io::TriangleMesh& upper_U,
                              const OracleOptions& options);
+/// The same from the meshes' io::MeshContentHash values, for a caller that hashed each mesh
+/// once for all its keys.
+std::uint64_t OracleCacheKey(std::uint64_t lower_hash, std::uint64_t upper_hash,
+                             const OracleOptions& options);
 
 /// The oracle as bytes (the format above), keyed by OracleCacheKey of its meshes and options.
 std::string SaveOracle(const JawOracle& oracle);
@@ -88,6 +92,12 @@ JawOracle LoadOracleFile(const std::filesystem::path& file,
                          std::shared_ptr<const io::TriangleMesh> lower_L,
                          std::shared_ptr<const io::TriangleMesh> upper_U,
                          const OracleOptions& options);
+/// The same with the meshes' and options' key given (OracleCacheKey of exactly these, from the
+/// hashes the caller keeps): the saved key must be `key` (else kMismatch).
+JawOracle LoadOracleFile(const std::filesystem::path& file,
+                         std::shared_ptr<const io::TriangleMesh> lower_L,
+                         std::shared_ptr<const io::TriangleMesh> upper_U,
+                         const OracleOptions& options, std::uint64_t key);
 
 /// One section of saved bytes (for tests and diagnostics): its tag, and where its bytes are.
 struct OracleFileSection {
