@@ -4,12 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench_files.h"
 #include "case_run.h"
 #include "config/pose_file.h"
 #include "run_occlude.h"
@@ -39,31 +38,49 @@ TEST(RefineCommandTest, AppliesTheAdjustmentWithALockedDofAndReports) {
   EXPECT_GT((after.translation() - base.translation()).norm(), 0.29);
 }
 
+// `occlude refine CASE --from-config --watch --max-refinements 2` on a thread of its own, its
+// output in a log: Save() writes the config once the watch runs and waits for the command to end.
+class WatchRun {
+ public:
+  explicit WatchRun(const std::filesystem::path& dir)
+      : config_(dir / "case.toml"), log_(dir / "watch.log") {
+    watcher_ = std::thread([this] {
+      const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " + config_.string() +
+                              " --from-config --watch --max-refinements 2 > " + log_.string() +
+                              " 2>&1";
+      EXPECT_EQ(std::system(cmd.c_str()), 0);
+    });
+    for (int i = 0; i < 600 && !Watching(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ~WatchRun() {
+    if (watcher_.joinable()) watcher_.join();
+  }
+  WatchRun(const WatchRun&) = delete;
+  WatchRun& operator=(const WatchRun&) = delete;
+
+  bool Watching() const { return Log().find("watching") != std::string::npos; }
+  std::string Log() const { return test::ReadFileText(log_); }
+  /// Saves `text` as the config (after a pause: a new time stamp) and waits for the second
+  /// refinement.
+  void Save(const std::string& text) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    Write(config_, text);
+    watcher_.join();
+  }
+
+ private:
+  std::filesystem::path config_, log_;
+  std::thread watcher_;
+};
+
 TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
   test::TempDir tmp;
   Write(tmp / "case.toml", Config(tmp / "out", "[0.1, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
-  const std::string log = (tmp / "watch.log").string();
-  std::thread watcher([&] {
-    const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " +
-                            (tmp / "case.toml").string() +
-                            " --from-config --watch --max-refinements 2 > " + log + " 2>&1";
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
-  });
-  auto read_log = [&] {
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  for (int i = 0; i < 600 && read_log().find("watching") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  }
-  ASSERT_NE(read_log().find("watching"), std::string::npos) << read_log();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  Write(tmp / "case.toml",
-        Config(tmp / "out", "[0.25, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
-  watcher.join();
-  const std::string out = read_log();
+  WatchRun watch(tmp.path());
+  ASSERT_TRUE(watch.Watching()) << watch.Log();
+  watch.Save(Config(tmp / "out", "[0.25, 0.0, 0.0]", "[bounds]\nlocked = [\"tx\"]\n"));
+  const std::string out = watch.Log();
   EXPECT_NE(out.find("moved t (0.100,"), std::string::npos) << out;
   EXPECT_NE(out.find("moved t (0.250,"), std::string::npos)
       << out;  // from the same base, not cumulative
@@ -71,10 +88,7 @@ TEST(RefineCommandTest, WatchRefinesAgainOnEverySave) {
 
 // The 3D view's triangle counts in report.html ("triangles": lower's, then upper's).
 std::vector<long> ViewTriangles(const std::filesystem::path& report) {
-  std::ifstream in(report);
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string html = text.str();
+  const std::string html = test::ReadFileText(report);
   std::vector<long> counts;
   const std::string key = "\"triangles\":";
   for (std::size_t at = html.find(key); at != std::string::npos; at = html.find(key, at + 1))
@@ -88,30 +102,13 @@ TEST(RefineCommandTest, WatchShowsTheNewMeshesAfterASaveChangesThem) {
   test::TempDir tmp;
   const std::string config = Config(tmp / "out", "[0.1, 0.0, 0.0]");
   Write(tmp / "case.toml", config);
-  const std::string log = (tmp / "watch.log").string();
-  std::thread watcher([&] {
-    const std::string cmd = std::string(OCCLUDE_BINARY) + " refine " +
-                            (tmp / "case.toml").string() +
-                            " --from-config --watch --max-refinements 2 > " + log + " 2>&1";
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
-  });
-  auto read_log = [&] {
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  for (int i = 0; i < 600 && read_log().find("watching") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  }
-  ASSERT_NE(read_log().find("watching"), std::string::npos) << read_log();
+  WatchRun watch(tmp.path());
+  ASSERT_TRUE(watch.Watching()) << watch.Log();
   const std::vector<long> before = ViewTriangles(tmp / "out" / "report.html");
   std::string finer = config;
   finer.replace(finer.find("triangles = 5000"), 16, "triangles = 6000");
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  Write(tmp / "case.toml", finer);
-  watcher.join();
-  EXPECT_NE(read_log().find("rebuilding the models"), std::string::npos) << read_log();
+  watch.Save(finer);
+  EXPECT_NE(watch.Log().find("rebuilding the models"), std::string::npos) << watch.Log();
   const json metrics = ReadJson(tmp / "out" / "metrics.json");
   const std::vector<long> after = ViewTriangles(tmp / "out" / "report.html");
   ASSERT_EQ(before.size(), 2u);
